@@ -1,0 +1,77 @@
+# Implementation builds (see common/include/springlab/task_api.hpp).
+#
+# Every task file is compiled into an inline namespace named by SPRINGLAB_IMPL:
+#   reference       all of solutions/
+#   student_taskN   the student's task N files (tasks/taskN_*) and solutions/ for the other tasks
+# so the tests of task N grade task N alone, and one program can hold every build at once.
+
+file(GLOB SPRINGLAB_SOLUTION_FILES CONFIGURE_DEPENDS
+     RELATIVE "${PROJECT_SOURCE_DIR}/solutions" "${PROJECT_SOURCE_DIR}/solutions/task*/*.cpp")
+list(SORT SPRINGLAB_SOLUTION_FILES)
+set(SPRINGLAB_TASKS 1 2 3 4)
+
+# The task number of a path such as task2_four_masses/spring_forces.cpp.
+function(springlab_task_of path out)
+  string(REGEX MATCH "^task([0-9]+)_" _ "${path}")
+  set(${out} "${CMAKE_MATCH_1}" PARENT_SCOPE)
+endfunction()
+
+# An object library for one file in one namespace, made once and shared by every build using it.
+function(springlab_object out ns tree file)
+  string(MAKE_C_IDENTIFIER "obj_${ns}_${tree}_${file}" target)
+  if(NOT TARGET ${target})
+    add_library(${target} OBJECT "${file}")
+    target_compile_definitions(${target} PRIVATE SPRINGLAB_IMPL=${ns})
+    target_link_libraries(${target} PRIVATE springlab_core)
+    if(tree STREQUAL "tasks")
+      target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS})  # warn, never fail
+    else()
+      target_link_libraries(${target} PRIVATE springlab_warnings)
+    endif()
+  endif()
+  set(${out} ${target} PARENT_SCOPE)
+endfunction()
+
+# springlab_add_implementation(TARGET NS STUDENT_TASK [REPLACE relpath file])
+# The solutions in namespace NS, with task STUDENT_TASK's files taken from SPRINGLAB_TASKS_DIR,
+# or, with REPLACE, the one file relpath taken from `file` (a mutant).
+function(springlab_add_implementation target ns student_task)
+  cmake_parse_arguments(ARG "" "" "REPLACE" ${ARGN})
+  set(objects "")
+  foreach(rel IN LISTS SPRINGLAB_SOLUTION_FILES)
+    springlab_task_of("${rel}" task)
+    set(tree solutions)
+    set(file "${PROJECT_SOURCE_DIR}/solutions/${rel}")
+    if(ARG_REPLACE)
+      list(GET ARG_REPLACE 0 replaced)
+      if(rel STREQUAL replaced)
+        set(tree "${target}")
+        list(GET ARG_REPLACE 1 file)
+      endif()
+    elseif(task STREQUAL "${student_task}")
+      set(tree tasks)
+      set(file "${SPRINGLAB_TASKS_DIR}/${rel}")
+      if(NOT EXISTS "${file}")
+        message(FATAL_ERROR "${file} is missing: tasks/ must hold every file solutions/ holds")
+      endif()
+    endif()
+    springlab_object(object ${ns} ${tree} "${file}")
+    list(APPEND objects $<TARGET_OBJECTS:${object}>)
+  endforeach()
+  add_library(${target} STATIC "${PROJECT_SOURCE_DIR}/common/impl/implementation_table.cpp"
+              ${objects})
+  target_compile_definitions(${target} PRIVATE SPRINGLAB_IMPL=${ns}
+                             SPRINGLAB_STUDENT_TASK=${student_task})
+  target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings)
+endfunction()
+
+springlab_add_implementation(springlab_reference reference 0)
+foreach(task IN LISTS SPRINGLAB_TASKS)
+  springlab_add_implementation(springlab_student_task${task} student_task${task} ${task})
+endforeach()
+
+# All builds in one library, for the front ends that choose at run time.
+add_library(springlab_implementations STATIC "${PROJECT_SOURCE_DIR}/common/impl/registry.cpp")
+target_link_libraries(springlab_implementations PUBLIC springlab_core springlab_reference
+                      springlab_student_task1 springlab_student_task2 springlab_student_task3
+                      springlab_student_task4 PRIVATE springlab_warnings)

@@ -1,0 +1,36 @@
+// What the runner, the viewer and the tests measure of a state: energies and momenta.
+#pragma once
+
+#include "springlab/types.hpp"
+
+#include <vector>
+
+namespace springlab {
+
+/// Σ ½ m_i |v_i|², J.
+double kinetic_energy(const Eigen::VectorXd& mass, const Vectors& v);
+
+/// Σ over springs of ½ k (|r_p - r_q| - ℓ0)², J. Its negative gradient is the spring force (1.1).
+double spring_energy(const std::vector<Spring>& springs, const Vectors& r);
+
+/// P = Σ m_i v_i, kg·m/s. Internal forces that obey F_qp = -F_pq leave it unchanged.
+Vec2 linear_momentum(const Eigen::VectorXd& mass, const Vectors& v);
+
+/// L = Σ m_i (r_i - about) × v_i (the z-component), kg·m²/s.
+double angular_momentum(const Eigen::VectorXd& mass, const Vectors& r, const Vectors& v,
+                        const Vec2& about = Vec2::Zero());
+
+/// Σ m_i r_i / Σ m_i, m.
+Vec2 centre_of_mass(const Eigen::VectorXd& mass, const Vectors& r);
+
+struct Diagnostics {
+  double kinetic = 0.0;     ///< J
+  double potential = 0.0;   ///< spring energy, J
+  Vec2 momentum{0.0, 0.0};  ///< kg·m/s
+  double angular_momentum = 0.0;  ///< about the origin, kg·m²/s
+  double total() const { return kinetic + potential; }
+};
+
+Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs);
+
+}  // namespace springlab

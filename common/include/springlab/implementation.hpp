@@ -1,0 +1,40 @@
+// An Implementation is one complete set of the functions students write: the reference
+// (solutions/) or "the student's task N with the reference for the other tasks". The core library
+// reaches task code only through this table, so a program can run several sets side by side.
+#pragma once
+
+#include "springlab/parameters.hpp"
+#include "springlab/types.hpp"
+
+#include <string_view>
+#include <vector>
+
+namespace springlab {
+
+struct Implementation {
+  std::string_view name;  ///< "reference", or "student task N"
+  int student_task = 0;   ///< N for "the student's task N", 0 for the reference
+
+  // Task 1 (task1_two_masses.hpp)
+  Vec2 (*spring_force)(const Vec2&, const Vec2&, double, double) = nullptr;
+  Vec2 (*damper_force)(const Vec2&, const Vec2&, double) = nullptr;
+  void (*explicit_euler_step)(const AccelerationFunction&, double, Vectors&, Vectors&) = nullptr;
+  // Task 2 (task2_four_masses.hpp)
+  std::vector<Spring> (*structural_springs)(int, int, const SpringFamilyParameters&) = nullptr;
+  void (*accumulate_spring_forces)(const std::vector<Spring>&, const Vectors&, const Vectors&,
+                                   Vectors&) = nullptr;
+  // Task 3 (task3_shear_springs.hpp)
+  std::vector<Spring> (*shear_springs)(int, int, const SpringFamilyParameters&) = nullptr;
+  // Task 4 (task4_verlet.hpp)
+  void (*verlet_step)(const AccelerationFunction&, double, Vectors&, Vectors&,
+                      VerletHistory&) = nullptr;
+};
+
+/// The reference implementation (solutions/).
+const Implementation& reference_implementation();
+
+/// The student's task `task` (1–4) with the reference for every other task: what `./lab test
+/// taskN --student` grades. Throws InvalidParameter for a task outside 1–4.
+const Implementation& student_implementation(int task);
+
+}  // namespace springlab

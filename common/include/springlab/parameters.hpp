@@ -1,0 +1,114 @@
+// Every value a scene is made from, in one struct with SI units and the lab's values as defaults,
+// and the one table (for_each_field) that names each field for --set, scene files, validation
+// and, later, the viewer's sliders.
+#pragma once
+
+#include "springlab/types.hpp"
+
+#include <numbers>
+#include <string>
+#include <string_view>
+
+namespace springlab {
+
+/// The values shared by every spring of one family (handout equation (3.2)).
+struct SpringFamilyParameters {
+  bool enabled = true;       ///< whether the scene has springs of this family at all
+  double k = 20.0;           ///< stiffness, N/m
+  double b = 0.1;            ///< damping coefficient of each spring's damper, N·s/m
+  double rest_length = 1.0;  ///< ℓ0, m
+};
+
+/// One scene: a rows×cols grid of equal masses, its springs, its start and how to step it.
+/// The defaults are the lab's values (lecture appendix) on the task 1 scene.
+struct SceneParameters {
+  std::string name = "custom";  ///< shown by the runner and the viewer
+  int task = 0;                 ///< the lab task the scene belongs to (1–4), 0 for none
+  int rows = 1;                 ///< grid rows (particles per column)
+  int cols = 2;                 ///< grid columns (particles per row)
+  double spacing = 1.0;         ///< distance between grid neighbours at the start, m
+  double mass = 0.2;            ///< mass of every particle, kg
+  SpringFamilyParameters structural{true, 20.0, 0.1, 1.0};                ///< task 2
+  SpringFamilyParameters shear{false, 7.0, 0.05, std::numbers::sqrt2};    ///< task 3
+  int displaced_particle = 1;   ///< index of the particle moved from its grid position at t = 0
+  Vec2 displacement{0.2, 0.0};  ///< how far it is moved, m
+  double step = 0.01;           ///< h, the fixed time step, s
+  double duration = 10.0;       ///< simulated time of a run, s
+  std::string integrator = "explicit-euler";  ///< an integrator name (see integrator.hpp)
+};
+
+/// The allowed values of a numeric field: min ≤ value ≤ max, with strict ends where *_open.
+struct Range {
+  double min = 0.0;
+  double max = 0.0;
+  bool min_open = false;
+  bool max_open = false;
+  bool integer = false;
+
+  bool contains(double value) const;  ///< false for NaN and infinities
+  std::string describe(std::string_view key, std::string_view unit) const;  ///< "0 < mass ≤ 1e+06 kg"
+};
+
+/// How for_each_field describes a field to its visitor.
+struct FieldInfo {
+  std::string_view key;      ///< as written after --set and in scene files, e.g. "structural.k"
+  std::string_view unit;     ///< SI unit, empty for counts, switches and names
+  std::string_view meaning;  ///< one line for help texts
+  Range range;               ///< allowed values of a numeric field
+};
+
+inline constexpr int max_grid_side = 100000;  ///< particles along one side of a grid
+
+/// Calls visit(info, value) for every field of p, where value is an int&, double&, bool& or
+/// std::string& (const when p is const). The one list of every scene parameter.
+template <class Params, class Visitor>
+void for_each_field(Params& p, Visitor&& visit) {
+  constexpr double big = 1e9;
+  const Range positive{0.0, big, true};
+  const Range non_negative{0.0, big};
+  const Range any_length{-1e6, 1e6};
+  const Range side{1, max_grid_side, false, false, true};
+  visit(FieldInfo{"name", "", "the scene's name", {}}, p.name);
+  visit(FieldInfo{"task", "", "the lab task it belongs to, 0 for none", {0, 4, false, false, true}},
+        p.task);
+  visit(FieldInfo{"rows", "", "grid rows", side}, p.rows);
+  visit(FieldInfo{"cols", "", "grid columns", side}, p.cols);
+  visit(FieldInfo{"spacing", "m", "distance between grid neighbours at the start", positive},
+        p.spacing);
+  visit(FieldInfo{"mass", "kg", "mass of every particle", positive}, p.mass);
+  visit(FieldInfo{"structural.enabled", "", "structural springs on or off", {}},
+        p.structural.enabled);
+  visit(FieldInfo{"structural.k", "N/m", "structural stiffness", non_negative}, p.structural.k);
+  visit(FieldInfo{"structural.b", "N*s/m", "structural damping", non_negative}, p.structural.b);
+  visit(FieldInfo{"structural.rest_length", "m", "structural rest length", positive},
+        p.structural.rest_length);
+  visit(FieldInfo{"shear.enabled", "", "shear springs on or off", {}}, p.shear.enabled);
+  visit(FieldInfo{"shear.k", "N/m", "shear stiffness", non_negative}, p.shear.k);
+  visit(FieldInfo{"shear.b", "N*s/m", "shear damping", non_negative}, p.shear.b);
+  visit(FieldInfo{"shear.rest_length", "m", "shear rest length", positive}, p.shear.rest_length);
+  visit(FieldInfo{"displaced_particle", "", "index of the particle moved at the start",
+                  {0, double(max_grid_side) * max_grid_side, false, false, true}},
+        p.displaced_particle);
+  visit(FieldInfo{"displacement.x", "m", "its displacement along x", any_length},
+        p.displacement.x());
+  visit(FieldInfo{"displacement.y", "m", "its displacement along y", any_length},
+        p.displacement.y());
+  visit(FieldInfo{"step", "s", "h, the fixed time step", {0.0, 10.0, true}}, p.step);
+  visit(FieldInfo{"duration", "s", "simulated time of a run", {0.0, 1e7}}, p.duration);
+  visit(FieldInfo{"integrator", "", "the integrator's name", {}}, p.integrator);
+}
+
+/// Checks every field against its range and the fields against each other (rows·cols ≥ 2, the
+/// grid fits in memory, the displaced particle exists, the integrator is known). Throws
+/// InvalidParameter naming the field, the value and the allowed range.
+void validate(const SceneParameters& p);
+
+/// Sets the field `key` from text, as `--set key=value` does: "40", "true", "verlet". Throws
+/// InvalidParameter for an unknown key (suggesting the nearest one), text that is not a value of
+/// the field's type, or a value out of range.
+void set_parameter(SceneParameters& p, std::string_view key, std::string_view value);
+
+/// The known field name nearest to `key` (edit distance), for "did you mean" hints.
+std::string nearest_key(std::string_view key);
+
+}  // namespace springlab

@@ -1,0 +1,37 @@
+// Scenes are data: parameters go in, particles and springs come out. Built in this one place and
+// shared by the runner, the viewer, the tests and the benchmarks.
+#pragma once
+
+#include "springlab/implementation.hpp"
+#include "springlab/parameters.hpp"
+#include "springlab/types.hpp"
+
+#include <string>
+#include <vector>
+
+namespace springlab {
+
+struct Scene {
+  SceneParameters parameters;   ///< what it was built from
+  Particles particles;          ///< at t = 0, the displaced particle already moved
+  std::vector<Spring> springs;  ///< only the families the parameters enable
+};
+
+/// Position of grid particle [row, col] at rest: x = col·spacing, y = -row·spacing (row 0 on top).
+Vec2 grid_position(int row, int col, double spacing);
+
+/// Builds the grid after validate(p): equal masses at grid_position, at rest, then the displaced
+/// particle moved; springs from impl's builders for the enabled families only (a scene pays for
+/// nothing it leaves out).
+Scene build_scene(const SceneParameters& p, const Implementation& impl);
+
+/// The lab's scene for task 1–4 (handout sections 1–4). Throws InvalidParameter otherwise.
+SceneParameters task_scene(int task);
+
+/// "task1" … "task4".
+std::vector<std::string> task_scene_names();
+
+/// task_scene for "task1" … "task4"; otherwise the scene file at that path (scene_file.hpp).
+SceneParameters load_scene(const std::string& name_or_path);
+
+}  // namespace springlab

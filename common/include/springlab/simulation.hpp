@@ -1,0 +1,67 @@
+// A running scene: the model (forces → accelerations), an integrator and a divergence watch,
+// advanced by a fixed step. Used by the runner, the viewer and the tests alike.
+#pragma once
+
+#include "springlab/diagnostics.hpp"
+#include "springlab/implementation.hpp"
+#include "springlab/integrator.hpp"
+#include "springlab/scene.hpp"
+
+#include <memory>
+#include <string_view>
+
+namespace springlab {
+
+/// When a run counts as diverged (besides any NaN or infinity, which always does).
+struct DivergenceLimits {
+  /// The total energy may not exceed this many times the reference energy: the larger of the
+  /// energy at t = 0 and the energy of every spring stretched by 10 % of its rest length. Springs
+  /// store energy and dampers remove it, so a stable step never comes near; an unstable one
+  /// passes it within a few hundred steps of reaching visible amplitudes.
+  double energy_growth = 1e4;
+  int energy_check_interval = 8;  ///< steps between energy checks (finiteness is checked every step)
+};
+
+class Simulation {
+ public:
+  /// Builds the scene of p with impl's functions and p.integrator.
+  Simulation(const SceneParameters& p, const Implementation& impl, DivergenceLimits limits = {});
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// One step of h = parameters().step. Throws DivergenceError (when, which particle, what) if
+  /// the state stops being finite or the energy runs away.
+  void step();
+  void advance(long steps);
+
+  /// The model the integrator sees: a_i = F_i / m_i with the spring and damper forces of every
+  /// spring (impl.accumulate_spring_forces); zero for pinned particles.
+  const Vectors& acceleration(const Vectors& r, const Vectors& v);
+
+  double time() const { return double(steps_) * scene_.parameters.step; }  ///< s
+  long steps_taken() const { return steps_; }
+  long force_evaluations() const { return evaluations_; }
+  const Scene& scene() const { return scene_; }
+  const Particles& particles() const { return scene_.particles; }
+  const SceneParameters& parameters() const { return scene_.parameters; }
+  const Implementation& implementation() const { return *impl_; }
+  Integrator& integrator() { return *integrator_; }
+  Diagnostics diagnostics() const { return diagnose(scene_.particles, scene_.springs); }
+  double reference_energy() const { return reference_energy_; }  ///< J, see DivergenceLimits
+
+ private:
+  void check_divergence(bool check_energy) const;
+
+  Scene scene_;
+  const Implementation* impl_;
+  std::unique_ptr<Integrator> integrator_;
+  AccelerationFunction acceleration_function_;
+  DivergenceLimits limits_;
+  double reference_energy_ = 0.0;
+  long steps_ = 0;
+  long evaluations_ = 0;
+  Eigen::VectorXd inverse_mass_;  // 1/m_i, zero for pinned particles
+  Vectors force_, acceleration_;
+};
+
+}  // namespace springlab

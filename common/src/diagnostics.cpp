@@ -1,0 +1,43 @@
+#include "springlab/diagnostics.hpp"
+
+namespace springlab {
+
+double kinetic_energy(const Eigen::VectorXd& mass, const Vectors& v) {
+  return 0.5 * mass.dot(v.colwise().squaredNorm().transpose());
+}
+
+double spring_energy(const std::vector<Spring>& springs, const Vectors& r) {
+  double energy = 0.0;
+  for (const Spring& s : springs) {
+    const double stretch = (r.col(s.p) - r.col(s.q)).norm() - s.rest_length;
+    energy += 0.5 * s.k * stretch * stretch;
+  }
+  return energy;
+}
+
+Vec2 linear_momentum(const Eigen::VectorXd& mass, const Vectors& v) { return v * mass; }
+
+double angular_momentum(const Eigen::VectorXd& mass, const Vectors& r, const Vectors& v,
+                        const Vec2& about) {
+  double total = 0.0;
+  for (Eigen::Index i = 0; i < r.cols(); ++i) {
+    const Vec2 arm = r.col(i) - about;
+    total += mass[i] * (arm.x() * v(1, i) - arm.y() * v(0, i));
+  }
+  return total;
+}
+
+Vec2 centre_of_mass(const Eigen::VectorXd& mass, const Vectors& r) {
+  return r * mass / mass.sum();
+}
+
+Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs) {
+  Diagnostics d;
+  d.kinetic = kinetic_energy(particles.mass, particles.velocity);
+  d.potential = spring_energy(springs, particles.position);
+  d.momentum = linear_momentum(particles.mass, particles.velocity);
+  d.angular_momentum = angular_momentum(particles.mass, particles.position, particles.velocity);
+  return d;
+}
+
+}  // namespace springlab

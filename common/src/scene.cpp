@@ -1,0 +1,70 @@
+#include "springlab/scene.hpp"
+
+#include "springlab/errors.hpp"
+#include "springlab/scene_file.hpp"
+
+#include <string>
+
+namespace springlab {
+
+Vec2 grid_position(int row, int col, double spacing) {
+  return Vec2(col * spacing, -row * spacing);
+}
+
+Scene build_scene(const SceneParameters& p, const Implementation& impl) {
+  validate(p);
+  Scene scene;
+  scene.parameters = p;
+  const int n = p.rows * p.cols;
+  Particles& particles = scene.particles;
+  particles.position.resize(2, n);
+  for (int row = 0; row < p.rows; ++row)
+    for (int col = 0; col < p.cols; ++col)
+      particles.position.col(row * p.cols + col) = grid_position(row, col, p.spacing);
+  particles.position.col(p.displaced_particle) += p.displacement;
+  particles.velocity = Vectors::Zero(2, n);
+  particles.mass = Eigen::VectorXd::Constant(n, p.mass);
+  particles.pinned.assign(n, false);
+
+  if (p.structural.enabled) scene.springs = impl.structural_springs(p.rows, p.cols, p.structural);
+  if (p.shear.enabled) {
+    const auto shear = impl.shear_springs(p.rows, p.cols, p.shear);
+    scene.springs.insert(scene.springs.end(), shear.begin(), shear.end());
+  }
+  return scene;
+}
+
+SceneParameters task_scene(int task) {
+  SceneParameters p;  // the lab's values; each task changes only what makes it that task
+  p.task = task;
+  p.name = "task" + std::to_string(task);
+  switch (task) {
+    case 1:  // two masses 1 m apart, the right one pulled 0.2 m along the spring
+      return p;
+    case 2:  // 2×2, structural springs, the bottom-right mass pulled out along the diagonal
+    case 3:  // the same with shear springs
+      p.rows = p.cols = 2;
+      p.shear.enabled = task == 3;
+      p.displaced_particle = 3;
+      p.displacement = Vec2(0.2, -0.2);
+      return p;
+    case 4:  // 3×3, structural and shear springs, Verlet
+      p.rows = p.cols = 3;
+      p.shear.enabled = true;
+      p.displaced_particle = 8;
+      p.displacement = Vec2(0.2, -0.2);
+      p.integrator = "verlet";
+      return p;
+  }
+  throw InvalidParameter("scene", "task" + std::to_string(task), "task1, task2, task3 or task4");
+}
+
+std::vector<std::string> task_scene_names() { return {"task1", "task2", "task3", "task4"}; }
+
+SceneParameters load_scene(const std::string& name_or_path) {
+  for (int task = 1; task <= 4; ++task)
+    if (name_or_path == "task" + std::to_string(task)) return task_scene(task);
+  return load_scene_file(name_or_path);
+}
+
+}  // namespace springlab

@@ -1,0 +1,96 @@
+#include "springlab/simulation.hpp"
+
+#include "springlab/errors.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace springlab {
+namespace {
+
+// Energy of every spring stretched by 10 % of its rest length: the scale of a moderate motion.
+double moderate_energy(const std::vector<Spring>& springs) {
+  double energy = 0.0;
+  for (const Spring& s : springs) energy += 0.5 * s.k * std::pow(0.1 * s.rest_length, 2);
+  return energy;
+}
+
+// The first non-finite entry, as (particle, quantity), or (-1, "") when all are finite.
+std::pair<int, std::string> first_non_finite(const Particles& particles) {
+  const char* axis[] = {"x", "y"};
+  for (int i = 0; i < particles.size(); ++i)
+    for (int d = 0; d < 2; ++d) {
+      if (!std::isfinite(particles.position(d, i))) return {i, std::string("position.") + axis[d]};
+      if (!std::isfinite(particles.velocity(d, i))) return {i, std::string("velocity.") + axis[d]};
+    }
+  return {-1, ""};
+}
+
+}  // namespace
+
+Simulation::Simulation(const SceneParameters& p, const Implementation& impl,
+                       DivergenceLimits limits)
+    : scene_(build_scene(p, impl)),
+      impl_(&impl),
+      integrator_(make_integrator(p.integrator, impl)),
+      acceleration_function_(
+          [this](const Vectors& r, const Vectors& v) -> const Vectors& { return acceleration(r, v); }),
+      limits_(limits) {
+  // A pinned particle behaves as if infinitely heavy: its acceleration is always zero.
+  const Particles& particles = scene_.particles;
+  inverse_mass_ = particles.mass.cwiseInverse();
+  for (int i = 0; i < particles.size(); ++i)
+    if (particles.pinned[i]) inverse_mass_[i] = 0.0;
+  const Diagnostics start = diagnostics();
+  reference_energy_ = std::max(start.total(), moderate_energy(scene_.springs));
+  check_divergence(true);
+}
+
+const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
+  ++evaluations_;
+  force_.setZero(2, r.cols());
+  impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
+  acceleration_.noalias() = force_ * inverse_mass_.asDiagonal();
+  return acceleration_;
+}
+
+void Simulation::step() {
+  Particles& particles = scene_.particles;
+  try {
+    integrator_->step(acceleration_function_, scene_.parameters.step, particles.position,
+                      particles.velocity);
+    ++steps_;
+    check_divergence(steps_ % limits_.energy_check_interval == 0);
+  } catch (const StepFailed& failure) {
+    throw DivergenceError(time(), -1, std::string(integrator_->name()) + " step", failure.what());
+  }
+}
+
+void Simulation::advance(long steps) {
+  for (long i = 0; i < steps; ++i) step();
+}
+
+void Simulation::check_divergence(bool check_energy) const {
+  const Particles& particles = scene_.particles;
+  const bool finite = particles.position.allFinite() && particles.velocity.allFinite();
+  if (const auto [particle, quantity] = first_non_finite(particles); !finite)
+    throw DivergenceError(time(), particle, quantity,
+                          "it is no longer a finite number; the step h = " +
+                              std::to_string(scene_.parameters.step) +
+                              " s is probably beyond the method's stability limit");
+  if (!check_energy) return;
+  const double energy = diagnostics().total();
+  if (energy <= limits_.energy_growth * reference_energy_) return;
+  Eigen::Index fastest = 0;
+  particles.velocity.colwise().squaredNorm().maxCoeff(&fastest);
+  std::ostringstream why;
+  why << "the total energy " << energy << " J is more than " << limits_.energy_growth
+      << " times its reference " << reference_energy_ << " J (runaway growth); particle "
+      << fastest << " is the fastest at " << particles.velocity.col(fastest).norm()
+      << " m/s. Springs and dampers cannot add energy, so the step h = " << scene_.parameters.step
+      << " s is beyond the stability limit of " << integrator_->name();
+  throw DivergenceError(time(), int(fastest), "total energy", why.str());
+}
+
+}  // namespace springlab

@@ -1,0 +1,88 @@
+#include "springlab/stability.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace springlab {
+namespace {
+
+// Adds the 2×2 block B of a spring between p and q: +B on the diagonal blocks, -B off them.
+void add_pair_block(Eigen::MatrixXd& matrix, int p, int q, const Eigen::Matrix2d& block) {
+  matrix.block<2, 2>(2 * p, 2 * p) += block;
+  matrix.block<2, 2>(2 * q, 2 * q) += block;
+  matrix.block<2, 2>(2 * p, 2 * q) -= block;
+  matrix.block<2, 2>(2 * q, 2 * p) -= block;
+}
+
+// Eigenvalues this much smaller than the largest belong to rigid motions (free translation).
+constexpr double rigid_tolerance = 1e-8;
+
+}  // namespace
+
+LinearModel linearise(const std::vector<Spring>& springs, const Vectors& r,
+                      const Eigen::VectorXd& mass, const std::vector<bool>& pinned) {
+  const int n = static_cast<int>(r.cols());
+  Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  Eigen::MatrixXd damping = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  for (const Spring& s : springs) {
+    const Vec2 d = r.col(s.p) - r.col(s.q);
+    const double length = d.norm();
+    const Vec2 u = d / length;
+    const Eigen::Matrix2d along = u * u.transpose();
+    // Hessian of ½k(|d| - ℓ0)²: stiff along the spring, (1 - ℓ0/L)·k across it.
+    const Eigen::Matrix2d hessian =
+        s.k * (along + (1.0 - s.rest_length / length) * (Eigen::Matrix2d::Identity() - along));
+    add_pair_block(stiffness, s.p, s.q, hessian);
+    add_pair_block(damping, s.p, s.q, s.b * Eigen::Matrix2d::Identity());
+  }
+  std::vector<int> free;
+  for (int i = 0; i < n; ++i)
+    if (!pinned[i]) free.insert(free.end(), {2 * i, 2 * i + 1});
+  LinearModel model;
+  model.stiffness = stiffness(free, free);
+  model.damping = damping(free, free);
+  model.mass.resize(Eigen::Index(free.size()));
+  for (std::size_t j = 0; j < free.size(); ++j) model.mass[Eigen::Index(j)] = mass[free[j] / 2];
+  return model;
+}
+
+double highest_frequency(const LinearModel& model) {
+  const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(scaled, Eigen::EigenvaluesOnly);
+  return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
+}
+
+Eigen::VectorXcd system_eigenvalues(const LinearModel& model) {
+  const Eigen::Index n = model.mass.size();
+  const Eigen::VectorXd inverse_mass = model.mass.cwiseInverse();
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  a.topRightCorner(n, n).setIdentity();
+  a.bottomLeftCorner(n, n) = -(inverse_mass.asDiagonal() * model.stiffness);
+  a.bottomRightCorner(n, n) = -(inverse_mass.asDiagonal() * model.damping);
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(a, false);
+  return solver.eigenvalues();
+}
+
+double explicit_euler_growth_factor(const LinearModel& model, double h) {
+  const Eigen::VectorXcd lambda = system_eigenvalues(model);
+  return (1.0 + h * lambda.array()).abs().maxCoeff();
+}
+
+double explicit_euler_critical_step(const LinearModel& model) {
+  const Eigen::VectorXcd lambda = system_eigenvalues(model);
+  const double largest = lambda.cwiseAbs().maxCoeff();
+  double limit = std::numeric_limits<double>::infinity();
+  for (const auto& l : lambda) {
+    if (std::abs(l) <= rigid_tolerance * largest) continue;
+    limit = std::min(limit, std::max(0.0, -2.0 * l.real() / std::norm(l)));
+  }
+  return limit;
+}
+
+double verlet_critical_step(const LinearModel& model) { return 2.0 / highest_frequency(model); }
+
+}  // namespace springlab

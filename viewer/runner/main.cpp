@@ -1,0 +1,144 @@
+// springlab-run: the headless front end. Runs a scene with the reference or the student's code
+// and writes the state as CSV. Exit codes: 0 done, 2 bad input, 3 diverged, 4 task not written yet.
+#include "runner/csv.hpp"
+#include "springlab/errors.hpp"
+#include "springlab/implementation.hpp"
+#include "springlab/integrator.hpp"
+#include "springlab/scene.hpp"
+#include "springlab/simulation.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <optional>
+
+namespace {
+
+using namespace springlab;
+
+enum Exit { done = 0, bad_input = 2, diverged = 3, not_written = 4 };
+
+struct Options {
+  std::string scene = "task1";
+  std::string impl = "reference";
+  std::optional<std::string> integrator;
+  std::optional<double> dt, duration;
+  std::vector<std::string> sets;
+  long every = 1;
+  std::string csv;
+  bool quiet = false;
+};
+
+SceneParameters scene_from(const Options& options) {
+  SceneParameters p = load_scene(options.scene);
+  if (options.integrator) set_parameter(p, "integrator", *options.integrator);
+  if (options.dt) set_parameter(p, "step", std::to_string(*options.dt));
+  if (options.duration) set_parameter(p, "duration", std::to_string(*options.duration));
+  for (const std::string& assignment : options.sets) {
+    const auto equals = assignment.find('=');
+    if (equals == std::string::npos)
+      throw InvalidParameter("--set", "\"" + assignment + "\"", "KEY=VALUE, e.g. structural.k=40");
+    set_parameter(p, assignment.substr(0, equals), assignment.substr(equals + 1));
+  }
+  validate(p);
+  return p;
+}
+
+const Implementation& implementation_for(const Options& options, const SceneParameters& p) {
+  if (options.impl == "reference") return reference_implementation();
+  if (p.task < 1 || p.task > 4)
+    throw InvalidParameter("--impl student", "scene \"" + p.name + "\" (task = " +
+                               std::to_string(p.task) + ")",
+                           "a scene of task 1-4: the student's code of that task runs; in a scene "
+                           "file, set task = N");
+  return student_implementation(p.task);
+}
+
+long steps_for(const SceneParameters& p) {
+  // Whole steps only: round down when duration/h is a whole number up to rounding.
+  return long(std::ceil(p.duration / p.step - 1e-9));
+}
+
+void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& start,
+                   double seconds) {
+  const Diagnostics end = sim.diagnostics();
+  const SceneParameters& p = sim.parameters();
+  out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, "
+      << sim.particles().size() << " particles, " << sim.scene().springs.size() << " springs\n"
+      << "code " << sim.implementation().name << ", integrator " << p.integrator << ", h = "
+      << p.step << " s, " << sim.steps_taken() << " steps to t = " << sim.time() << " s\n"
+      << "energy " << start.total() << " J -> " << end.total() << " J (kinetic " << end.kinetic
+      << ", spring " << end.potential << "); momentum (" << end.momentum.x() << ", "
+      << end.momentum.y() << ") kg*m/s\n"
+      << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time\n";
+}
+
+int run(const Options& options) {
+  const SceneParameters p = scene_from(options);
+  Simulation sim(p, implementation_for(options, p));
+  std::ofstream file;
+  std::ostream* csv = nullptr;
+  if (options.csv == "-") {
+    csv = &std::cout;
+  } else if (!options.csv.empty()) {
+    file.open(options.csv);
+    if (!file) throw InvalidParameter("--csv", options.csv, "a file that can be written");
+    csv = &file;
+  }
+  std::ostream& report = csv == &std::cout ? std::cerr : std::cout;
+  if (csv) write_csv_header(*csv, sim.particles().size()), write_csv_row(*csv, sim);
+
+  const Diagnostics start = sim.diagnostics();
+  const long steps = steps_for(p);
+  const auto clock_start = std::chrono::steady_clock::now();
+  for (long n = 1; n <= steps; ++n) {
+    sim.step();
+    if (csv && (n % options.every == 0 || n == steps)) write_csv_row(*csv, sim);
+  }
+  const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - clock_start;
+  if (!options.quiet) print_summary(report, sim, start, wall.count());
+  return done;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  CLI::App app{"springlab-run: run a springlab scene without a window and write its state as CSV"};
+  app.add_option("--scene", options.scene, "task1, task2, task3, task4 or a scene file (TOML)")
+      ->capture_default_str();
+  app.add_option("--impl", options.impl, "whose code runs: the reference or the student's")
+      ->check(CLI::IsMember({"reference", "student"}))
+      ->capture_default_str();
+  app.add_option("--integrator", options.integrator, "explicit-euler or verlet (default: the scene's)");
+  app.add_option("--dt", options.dt, "the step h in seconds (default: the scene's, 0.01)");
+  app.add_option("--duration", options.duration, "simulated seconds (default: the scene's)");
+  app.add_option("--set", options.sets, "KEY=VALUE: change a scene parameter, e.g. structural.k=40")
+      ->take_all();
+  app.add_option("--every", options.every, "write every N-th step")
+      ->check(CLI::Range(1L, 1000000000L))
+      ->capture_default_str();
+  app.add_option("--csv", options.csv, "FILE, or - for standard output (default: no CSV)");
+  app.add_flag("--quiet", options.quiet, "no summary");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    const int code = app.exit(error);
+    return code == 0 ? done : bad_input;
+  }
+  try {
+    return run(options);
+  } catch (const InvalidParameter& error) {
+    std::cerr << "springlab-run: " << error.what() << '\n';
+    return bad_input;
+  } catch (const DivergenceError& error) {
+    std::cerr << "springlab-run: " << error.what() << '\n';
+    return diverged;
+  } catch (const NotImplemented& error) {
+    std::cerr << "springlab-run: " << error.what() << '\n';
+    return not_written;
+  }
+}
