@@ -31,9 +31,12 @@ std::pair<int, std::string> first_non_finite(const Particles& particles) {
 
 Simulation::Simulation(const SceneParameters& p, const Implementation& impl,
                        DivergenceLimits limits)
-    : scene_(build_scene(p, impl)),
+    : Simulation(build_scene(p, impl), impl, limits) {}
+
+Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits limits)
+    : scene_(std::move(scene)),
       impl_(&impl),
-      integrator_(make_integrator(p.integrator, impl)),
+      integrator_(make_integrator(scene_.parameters.integrator, impl)),
       acceleration_function_(
           [this](const Vectors& r, const Vectors& v) -> const Vectors& { return acceleration(r, v); }),
       limits_(limits) {

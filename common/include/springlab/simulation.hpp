@@ -26,6 +26,8 @@ class Simulation {
  public:
   /// Builds the scene of p with impl's functions and p.integrator.
   Simulation(const SceneParameters& p, const Implementation& impl, DivergenceLimits limits = {});
+  /// Runs a scene built (and perhaps changed) elsewhere: its parameters say h and the integrator.
+  Simulation(Scene scene, const Implementation& impl, DivergenceLimits limits = {});
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 

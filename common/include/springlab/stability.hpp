@@ -26,7 +26,8 @@ double highest_frequency(const LinearModel& model);
 /// The eigenvalues λ of y' = A y with y = (δr, δv), A = [[0, I], [-M⁻¹K, -M⁻¹C]], 1/s.
 Eigen::VectorXcd system_eigenvalues(const LinearModel& model);
 
-/// Explicit Euler multiplies mode λ by 1 + hλ each step: the largest |1 + hλ| at step h.
+/// Explicit Euler multiplies mode λ by 1 + hλ each step: the largest |1 + hλ| at step h over
+/// the modes that deform the scene (λ ≠ 0; free translations stay as they are).
 double explicit_euler_growth_factor(const LinearModel& model, double h);
 
 /// The largest h with |1 + hλ| ≤ 1 for every λ ≠ 0: min over λ of -2 Re λ / |λ|², s. For one

@@ -1,0 +1,212 @@
+// The kit's own core: parameters and their errors, scenes, divergence detection, the stability
+// theory. Runs against the reference only (tag [core]); students never edit any of it.
+#include "lab_testing.hpp"
+#include "springlab/errors.hpp"
+#include "springlab/scene_file.hpp"
+#include "springlab/stability.hpp"
+#include "springlab/this_implementation.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+
+using namespace springlab;
+using namespace springlab::testing;
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+// The message of the InvalidParameter that `action` throws, or "" when it throws none.
+template <class Action>
+std::string rejection(Action&& action) {
+  try {
+    action();
+  } catch (const InvalidParameter& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("Parameters: the defaults are the lab's values", "[core][parameters]") {
+  const SceneParameters p;
+  CHECK(p.step == 0.01);
+  CHECK(p.mass == 0.2);
+  CHECK(p.structural.k == 20.0);
+  CHECK(p.structural.b == 0.1);
+  CHECK(p.structural.rest_length == 1.0);
+  CHECK(p.shear.k == 7.0);
+  CHECK(p.shear.b == 0.05);
+  CHECK(p.shear.rest_length == std::sqrt(2.0));
+  CHECK_NOTHROW(validate(p));
+  for (int task = 1; task <= 4; ++task) CHECK_NOTHROW(validate(task_scene(task)));
+}
+
+TEST_CASE("Parameters: bad values are rejected naming the field, the value and the range",
+          "[core][parameters]") {
+  struct Case {
+    const char* key;
+    const char* value;
+  };
+  const Case bad = GENERATE(Case{"mass", "0"}, Case{"mass", "-1"}, Case{"step", "0"},
+                            Case{"step", "-0.01"}, Case{"structural.rest_length", "0"},
+                            Case{"shear.rest_length", "-1.4"}, Case{"structural.k", "nan"},
+                            Case{"shear.b", "inf"}, Case{"spacing", "-inf"}, Case{"rows", "0"},
+                            Case{"cols", "2.5"}, Case{"structural.k", "-5"},
+                            Case{"displacement.x", "1e400"});
+  SceneParameters p;
+  const std::string message = rejection([&] { set_parameter(p, bad.key, bad.value); });
+  CAPTURE(bad.key, bad.value, message);
+  CHECK_THAT(message, Contains(bad.key));
+  CHECK_THAT(message, Contains("allowed") || Contains("a number"));
+  CHECK_NOTHROW(validate(p));  // the bad value was not stored
+}
+
+TEST_CASE("Parameters: grids smaller than 1x2 or too large for memory are rejected",
+          "[core][parameters]") {
+  SceneParameters p;
+  p.rows = 1, p.cols = 1;
+  CHECK_THAT(rejection([&] { validate(p); }), Contains("rows x cols = 1 x 1"));
+  p.rows = max_grid_side, p.cols = max_grid_side;
+  CHECK_THAT(rejection([&] { validate(p); }), Contains("fit in half of this machine's memory"));
+  p.rows = 2, p.cols = 1;  // a column of two is fine
+  p.displaced_particle = 1;
+  CHECK_NOTHROW(validate(p));
+  p.displaced_particle = 2;
+  CHECK_THAT(rejection([&] { validate(p); }), Contains("displaced_particle = 2"));
+}
+
+TEST_CASE("Parameters: an unknown key suggests the nearest known one", "[core][parameters]") {
+  SceneParameters p;
+  CHECK_THAT(rejection([&] { set_parameter(p, "structural.stiffness", "3"); }),
+             Contains("no parameter \"structural.stiffness\"") && Contains("structural."));
+  CHECK_THAT(rejection([&] { set_parameter(p, "mas", "3"); }), Contains("did you mean \"mass\""));
+  CHECK_THAT(rejection([&] { set_parameter(p, "integrator", "rk5"); validate(p); }),
+             Contains("one of explicit-euler, verlet"));
+}
+
+TEST_CASE("Parameters: --set changes every kind of field", "[core][parameters]") {
+  SceneParameters p;
+  set_parameter(p, "structural.k", "40");
+  set_parameter(p, "mass", "0.5");
+  set_parameter(p, "rows", "3");
+  set_parameter(p, "shear.enabled", "true");
+  set_parameter(p, "integrator", "verlet");
+  CHECK(p.structural.k == 40.0);
+  CHECK(p.mass == 0.5);
+  CHECK(p.rows == 3);
+  CHECK(p.shear.enabled);
+  CHECK(p.integrator == "verlet");
+}
+
+TEST_CASE("Scene files: values, and errors with the file, the line and the key",
+          "[core][scene-file]") {
+  const std::string path = "springlab-core-test-scene.toml";
+  {
+    std::ofstream file(path);
+    file << "name = \"wide\"\nrows = 3\ncols = 5\n[structural]\nk = 40\n";
+  }
+  const SceneParameters p = load_scene_file(path);
+  CHECK(p.rows == 3);
+  CHECK(p.cols == 5);
+  CHECK(p.structural.k == 40.0);
+  {
+    std::ofstream file(path);
+    file << "rows = 3\n\nmass = -2\n";
+  }
+  CHECK_THAT(rejection([&] { load_scene_file(path); }), Contains(path + ":3: mass"));
+  {
+    std::ofstream file(path);
+    file << "rows = 3\nshear.rest_lenght = 2\n";
+  }
+  CHECK_THAT(rejection([&] { load_scene_file(path); }),
+             Contains(path + ":2") && Contains("did you mean \"shear.rest_length\""));
+  {
+    std::ofstream file(path);
+    file << "rows = = 3\n";
+  }
+  CHECK_THAT(rejection([&] { load_scene_file(path); }), Contains(path + ":1"));
+  CHECK_THAT(rejection([&] { load_scene("no-such-scene.toml"); }), Contains("task1, task2"));
+}
+
+TEST_CASE("Scenes: only the families a scene asks for are built", "[core][scene]") {
+  const Scene two = build_scene(task_scene(2), implementation());
+  const Scene three = build_scene(task_scene(3), implementation());
+  CHECK(two.springs.size() == 4);
+  CHECK(three.springs.size() == 6);
+  SceneParameters none = task_scene(4);
+  none.structural.enabled = none.shear.enabled = false;
+  CHECK(build_scene(none, implementation()).springs.empty());
+}
+
+TEST_CASE("Divergence: explicit Euler at the lab step stops with when, where and why",
+          "[core][divergence]") {
+  Simulation sim(task_scene(1), implementation());
+  try {
+    sim.advance(100000);
+    FAIL("explicit Euler at h = 0.01 s grows without bound, but no divergence was reported");
+  } catch (const DivergenceError& error) {
+    CAPTURE(error.what());
+    CHECK(error.time() > 1.0);  // the growth is slow (about x1.005 a step)...
+    CHECK(error.time() < 60.0);  // ...but it is caught long before any NaN
+    CHECK(error.particle() >= 0);
+    CHECK(error.quantity() == "total energy");
+    CHECK_THAT(std::string(error.what()), Contains("stability limit") && Contains("t = "));
+    CHECK(sim.particles().position.allFinite());
+  }
+}
+
+TEST_CASE("Divergence: a NaN is reported with its particle and quantity", "[core][divergence]") {
+  Scene scene = build_scene(task_scene(2), implementation());
+  scene.particles.velocity(1, 2) = std::numeric_limits<double>::quiet_NaN();
+  try {
+    Simulation sim(std::move(scene), implementation());
+    sim.step();
+    FAIL("a NaN velocity went unreported");
+  } catch (const DivergenceError& error) {
+    CHECK(error.particle() == 2);
+    CHECK(error.quantity() == "velocity.y");
+  }
+}
+
+TEST_CASE("Stability theory: two masses match the closed forms", "[core][stability]") {
+  const LabValues lab;
+  const Scene scene = build_scene(two_masses(lab.k, lab.b, lab.mass, 0.0, lab.h, "verlet"),
+                                  implementation());
+  const LinearModel model = linearise(scene.springs, scene.particles.position,
+                                      scene.particles.mass, scene.particles.pinned);
+  const TwoMassExact exact{lab.k, lab.b, lab.mass, 0.0};
+  CHECK_THAT(highest_frequency(model), WithinRel(exact.omega(), 1e-12));
+  CHECK_THAT(explicit_euler_critical_step(model), WithinRel(lab.b / lab.k, 1e-9));
+  CHECK_THAT(verlet_critical_step(model), WithinRel(2.0 / exact.omega(), 1e-12));
+  const double w = exact.omega(), z = exact.zeta(), h = lab.h;
+  CHECK_THAT(explicit_euler_growth_factor(model, h),
+             WithinRel(std::sqrt(1 - 2 * z * w * h + w * w * h * h), 1e-9));
+}
+
+TEST_CASE("Stability theory: the stiffness matrix is the derivative of the spring forces",
+          "[core][stability]") {
+  // K = -dF/dr by central differences of the reference forces, at a deformed state.
+  Scene scene = build_scene(lab_grid(3, 3, true, 0.01, "verlet"), implementation());
+  randomise(scene.particles, 0.2, 0.0, 17);
+  const Vectors r = scene.particles.position;
+  const LinearModel model =
+      linearise(scene.springs, r, scene.particles.mass, scene.particles.pinned);
+  const Vectors zero = Vectors::Zero(2, r.cols());
+  const auto force = [&](const Vectors& at) {
+    Vectors f = Vectors::Zero(2, r.cols());
+    implementation().accumulate_spring_forces(scene.springs, at, zero, f);
+    return Eigen::VectorXd(f.reshaped());
+  };
+  const double d = 1e-6;
+  for (Eigen::Index j = 0; j < 2 * r.cols(); ++j) {
+    Vectors plus = r, minus = r;
+    plus.reshaped()[j] += d;
+    minus.reshaped()[j] -= d;
+    const Eigen::VectorXd column = -(force(plus) - force(minus)) / (2 * d);
+    CAPTURE(j);
+    CHECK((column - model.stiffness.col(j)).norm() <= 1e-6 * model.stiffness.norm());
+  }
+}

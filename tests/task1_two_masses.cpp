@@ -1,0 +1,223 @@
+// Task 1: the spring (1.1), the damper (1.2) and the explicit Euler step (1.4)-(1.5).
+// Every expectation comes from physics or from the theory of the method, computed here.
+#include "lab_testing.hpp"
+#include "springlab/diagnostics.hpp"
+#include "springlab/task1_two_masses.hpp"
+#include "springlab/this_implementation.hpp"
+
+#include <cmath>
+#include <numbers>
+
+using namespace springlab;
+using namespace springlab::testing;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+Vec2 direction(double degrees) {
+  const double a = degrees * std::numbers::pi / 180.0;
+  return Vec2(std::cos(a), std::sin(a));
+}
+
+}  // namespace
+
+TEST_CASE("Spring: Hooke's magnitude and direction, stretched, compressed and rotated",
+          "[task1][spring]") {
+  INFO("equation (1.1): F_pq = -k (|r_p - r_q| - l0) (r_p - r_q) / |r_p - r_q|");
+  const double angle = GENERATE(0.0, 90.0, 37.0, 200.0, -135.0);
+  const double length = GENERATE(1.3, 0.6, 2.5);  // stretched, compressed, stretched far
+  const double k = 20.0, rest = 1.0;
+  const Vec2 r_q(0.4, -0.7);
+  const Vec2 r_p = r_q + length * direction(angle);
+  CAPTURE(angle, length);
+  const Vec2 f = spring_force(r_p, r_q, k, rest);
+  const Vec2 towards_q = -direction(angle);
+  // A stretched spring pulls p towards q with k·(L - l0); a compressed one pushes it away.
+  CHECK_THAT(f.dot(towards_q), WithinRel(k * (length - rest), 1e-12));
+  // Hooke's force acts along the spring only.
+  CHECK_THAT(f.x() * towards_q.y() - f.y() * towards_q.x(), WithinAbs(0.0, 1e-12));
+}
+
+TEST_CASE("Spring: no force at the rest length, in any direction", "[task1][spring]") {
+  INFO("equation (1.1): L = l0 gives F = 0");
+  const double angle = GENERATE(0.0, 45.0, 123.0, 270.0);
+  const double rest = GENERATE(1.0, std::numbers::sqrt2, 0.25);
+  const Vec2 r_q(1.0, 2.0);
+  CAPTURE(angle, rest);
+  CHECK_THAT(spring_force(r_q + rest * direction(angle), r_q, 7.0, rest),
+             IsNear(Vec2::Zero(), 1e-12));
+}
+
+TEST_CASE("Spring: the force on q is minus the force on p", "[task1][spring][momentum]") {
+  INFO("Newton's third law, F_qp = -F_pq (lecture; handout section 1)");
+  std::mt19937 engine(11);
+  std::uniform_real_distribution<double> unit(-2.0, 2.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec2 r_p(unit(engine), unit(engine)), r_q(unit(engine), unit(engine));
+    const double k = 10.0 + 5.0 * unit(engine), rest = 1.0 + 0.4 * unit(engine);
+    CAPTURE(trial, r_p, r_q, k, rest);
+    CHECK_THAT(spring_force(r_q, r_p, k, rest), IsNear(-spring_force(r_p, r_q, k, rest), 1e-12));
+  }
+}
+
+TEST_CASE("Spring: the force is minus the gradient of the spring energy", "[task1][spring]") {
+  INFO("E = 1/2 k (|r_p - r_q| - l0)^2 and F_pq = -dE/dr_p, by central finite differences");
+  std::mt19937 engine(7);
+  std::uniform_real_distribution<double> unit(-2.0, 2.0);
+  const double k = 20.0, rest = 1.0, d = 1e-6;
+  const auto energy = [&](const Vec2& r_p, const Vec2& r_q) {
+    return 0.5 * k * std::pow((r_p - r_q).norm() - rest, 2);
+  };
+  for (int trial = 0; trial < 20; ++trial) {
+    const Vec2 r_p(unit(engine), unit(engine)), r_q(unit(engine), unit(engine));
+    Vec2 gradient;
+    for (int axis = 0; axis < 2; ++axis) {
+      const Vec2 step = d * Vec2::Unit(axis);
+      gradient[axis] = (energy(r_p + step, r_q) - energy(r_p - step, r_q)) / (2 * d);
+    }
+    CAPTURE(trial, r_p, r_q);
+    CHECK_THAT(spring_force(r_p, r_q, k, rest), IsNear(-gradient, 1e-6 * (1 + gradient.norm())));
+  }
+}
+
+TEST_CASE("Damper: opposes the relative velocity, and F_qp = -F_pq", "[task1][damper]") {
+  INFO("equation (1.2): F_pq = -b (v_p - v_q)");
+  std::mt19937 engine(3);
+  std::uniform_real_distribution<double> unit(-3.0, 3.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec2 v_p(unit(engine), unit(engine)), v_q(unit(engine), unit(engine));
+    const double b = 0.1 + 0.05 * std::abs(unit(engine));
+    const Vec2 f = damper_force(v_p, v_q, b);
+    const Vec2 relative = v_p - v_q;
+    CAPTURE(trial, v_p, v_q, b, f);
+    CHECK_THAT(damper_force(v_q, v_p, b), IsNear(-f, 1e-14));
+    // Along the relative velocity, against it, with size b·|v_p - v_q|; nothing across it.
+    CHECK_THAT(f.dot(relative), WithinRel(-b * relative.squaredNorm(), 1e-12));
+    CHECK_THAT(f.x() * relative.y() - f.y() * relative.x(), WithinAbs(0.0, 1e-12));
+  }
+  CHECK_THAT(damper_force(Vec2(0.3, -0.2), Vec2(0.3, -0.2), 0.1), IsNear(Vec2::Zero(), 1e-15));
+}
+
+TEST_CASE("Damper: never adds energy", "[task1][damper]") {
+  INFO("power of the pair F_pq.v_p + F_qp.v_q = -b |v_p - v_q|^2 <= 0");
+  std::mt19937 engine(5);
+  std::uniform_real_distribution<double> unit(-3.0, 3.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Vec2 v_p(unit(engine), unit(engine)), v_q(unit(engine), unit(engine));
+    const double power = damper_force(v_p, v_q, 0.1).dot(v_p) + damper_force(v_q, v_p, 0.1).dot(v_q);
+    CAPTURE(trial, v_p, v_q, power);
+    CHECK(power <= 0.0);
+    CHECK_THAT(power, WithinRel(-0.1 * (v_p - v_q).squaredNorm(), 1e-12));
+  }
+}
+
+TEST_CASE("Explicit Euler: one step checked by hand", "[task1][euler][integrator]") {
+  INFO("equations (1.4), (1.5): r1 = r0 + h v0, v1 = v0 + h a(r0, v0)");
+  // A model with a known acceleration a = -4 r - 0.5 v, so the step can be worked out by hand
+  // and a step that moves r before evaluating a, or uses the new v for r, shows.
+  long evaluations = 0;
+  Vectors storage;
+  const AccelerationFunction model = [&](const Vectors& r, const Vectors& v) -> const Vectors& {
+    ++evaluations;
+    storage = -4.0 * r - 0.5 * v;
+    return storage;
+  };
+  Vectors r(2, 3), v(2, 3);
+  r << 0.0, 1.0, 2.5, 0.5, -1.0, 0.25;
+  v << 1.0, -2.0, 0.5, 0.0, 3.0, -1.5;
+  const Vectors r0 = r, v0 = v;
+  const double h = 0.1;
+  explicit_euler_step(model, h, r, v);
+  for (int i = 0; i < 3; ++i) {
+    CAPTURE(i);
+    CHECK_THAT(Vec2(r.col(i)), IsNear(r0.col(i) + h * v0.col(i), 1e-14));
+    CHECK_THAT(Vec2(v.col(i)), IsNear(v0.col(i) + h * (-4.0 * r0.col(i) - 0.5 * v0.col(i)), 1e-14));
+  }
+  CHECK(evaluations == 1);
+}
+
+TEST_CASE("Two masses: internal forces cancel and momentum is conserved for thousands of steps",
+          "[task1][momentum]") {
+  INFO("F_1 + F_2 = 0 (lecture: F_2 = -F_1), so P = m1 v1 + m2 v2 stays constant");
+  // A start with momentum, stepped below Euler's limit b/k for 5000 steps.
+  const LabValues lab;
+  Scene scene = build_scene(two_masses(lab.k, lab.b, lab.mass, 0.3, 0.004, "explicit-euler"),
+                            implementation());
+  scene.particles.velocity << 0.7, -0.1, 0.2, 0.5;
+  Simulation sim(std::move(scene), implementation());
+  const Vec2 start = sim.diagnostics().momentum;
+  double worst = 0.0;
+  run(sim, 5000, [&](const Simulation& s) {
+    worst = std::max(worst, (s.diagnostics().momentum - start).norm());
+  });
+  CAPTURE(start, worst);
+  CHECK(worst <= 1e-12);
+  CHECK(sim.diagnostics().potential > 0.0);  // it really did move
+}
+
+TEST_CASE("Two masses: a mirror-symmetric start moves mirror-symmetrically", "[task1][symmetry]") {
+  INFO("point symmetry about the spring's centre: r1 + r2 and v1 + v2 stay constant");
+  const LabValues lab;
+  Scene scene = build_scene(two_masses(lab.k, lab.b, lab.mass, 0.0, 0.004, "explicit-euler"),
+                            implementation());
+  // Both masses moved away from the centre (0.5, 0) the same way, in opposite directions.
+  scene.particles.position.col(0) += Vec2(-0.15, 0.25);
+  scene.particles.position.col(1) += Vec2(0.15, -0.25);
+  scene.particles.velocity.col(0) = Vec2(0.3, 0.4);
+  scene.particles.velocity.col(1) = Vec2(-0.3, -0.4);
+  Simulation sim(std::move(scene), implementation());
+  double worst = 0.0;
+  run(sim, 3000, [&](const Simulation& s) {
+    const Particles& p = s.particles();
+    worst = std::max({worst, (p.position.col(0) + p.position.col(1) - Vec2(1.0, 0.0)).norm(),
+                      (p.velocity.col(0) + p.velocity.col(1)).norm()});
+  });
+  CAPTURE(worst);
+  CHECK(worst <= 1e-12);
+}
+
+TEST_CASE("Explicit Euler converges with order 1 to the exact two-mass solution",
+          "[task1][euler][order]") {
+  INFO("global error O(h) (handout section 1); the exact solution is in handout section 1");
+  const LabValues lab;
+  const TwoMassExact exact{lab.k, lab.b, lab.mass, 0.2};
+  const double duration = 1.0;
+  std::vector<double> errors;
+  for (double h : {1e-3, 5e-4, 2.5e-4}) {
+    Simulation sim(two_masses(lab.k, lab.b, lab.mass, exact.u0, h, "explicit-euler"),
+                   implementation());
+    double error = 0.0;
+    run(sim, std::lround(duration / h), [&](const Simulation& s) {
+      const double stretch = (s.particles().position.col(1) - s.particles().position.col(0)).norm() -
+                             lab.rest;
+      error = std::max(error, std::abs(stretch - exact.stretch(s.time())));
+    });
+    errors.push_back(error);
+  }
+  CAPTURE(errors);
+  CHECK_THAT(observed_order(errors[0], errors[1]), WithinAbs(1.0, 0.15));
+  CHECK_THAT(observed_order(errors[1], errors[2]), WithinAbs(1.0, 0.15));
+}
+
+TEST_CASE("Explicit Euler at the lab step grows at the rate theory predicts",
+          "[task1][euler][stability]") {
+  INFO("equation (1.6): each step multiplies the amplitude by sqrt(1 - 2 zeta w h + w^2 h^2)");
+  const LabValues lab;
+  const TwoMassExact exact{lab.k, lab.b, lab.mass, 1e-6};  // small: the motion stays linear
+  const double h = GENERATE(0.01, 0.005 * 1.1, 0.005 * 0.9);  // lab step; just above, below b/k
+  const double w = exact.omega(), z = exact.zeta();
+  const double predicted = std::sqrt(1.0 - 2.0 * z * w * h + w * w * h * h);
+  Simulation sim(two_masses(lab.k, lab.b, lab.mass, exact.u0, h, "explicit-euler"),
+                 implementation(), no_divergence_stop());
+  std::vector<double> stretch;
+  const long steps = h == 0.01 ? 2000 : 40000;  // slow growth needs long runs to show
+  run(sim, steps, [&](const Simulation& s) {
+    stretch.push_back((s.particles().position.col(1) - s.particles().position.col(0)).norm() -
+                      lab.rest);
+  });
+  const double measured = growth_factor_from_peaks(stretch);
+  CAPTURE(h, lab.b / lab.k, predicted, measured);
+  CHECK_THAT(measured, WithinAbs(predicted, 0.02 * std::abs(predicted - 1.0)));
+  CHECK((measured > 1.0) == (h > lab.b / lab.k));  // unstable exactly above b/k
+}

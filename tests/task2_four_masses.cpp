@@ -1,0 +1,221 @@
+// Task 2: the structural springs of a grid (2.1)-(2.2) and the forces of all springs (2.3)-(2.4).
+// Every expectation comes from physics or from the theory of the method, computed here.
+#include "lab_testing.hpp"
+#include "springlab/diagnostics.hpp"
+#include "springlab/stability.hpp"
+#include "springlab/task2_four_masses.hpp"
+#include "springlab/this_implementation.hpp"
+
+#include <array>
+#include <cmath>
+#include <set>
+#include <utility>
+
+using namespace springlab;
+using namespace springlab::testing;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+// The spring forces of `scene` at (r, v), summed per particle by the code under test.
+Vectors summed_forces(const std::vector<Spring>& springs, const Vectors& r, const Vectors& v) {
+  Vectors force = Vectors::Zero(2, r.cols());
+  accumulate_spring_forces(springs, r, v, force);
+  return force;
+}
+
+// A grid with random positions and velocities: a state with every spring stretched differently.
+Scene random_grid(int rows, int cols, bool shear, unsigned seed) {
+  Scene scene = build_scene(lab_grid(rows, cols, shear, 0.01, "explicit-euler"), implementation());
+  randomise(scene.particles, 0.25, 1.0, seed);
+  return scene;
+}
+
+}  // namespace
+
+TEST_CASE("Structural springs: the count, each neighbour pair once, no self-springs",
+          "[task2][topology]") {
+  INFO("equation (2.2): rows*(cols-1) + cols*(rows-1) springs, right and down neighbours");
+  const auto [rows, cols] = GENERATE(std::pair{1, 2}, std::pair{2, 1}, std::pair{2, 2},
+                                     std::pair{3, 3}, std::pair{3, 5}, std::pair{5, 3},
+                                     std::pair{1, 7}, std::pair{4, 6});
+  const SpringFamilyParameters family{true, 20.0, 0.1, 1.0};
+  const std::vector<Spring> springs = structural_springs(rows, cols, family);
+  CAPTURE(rows, cols);
+  REQUIRE(springs.size() == std::size_t(rows * (cols - 1) + cols * (rows - 1)));
+  std::set<std::pair<int, int>> pairs;
+  for (const Spring& s : springs) {
+    CAPTURE(s.p, s.q);
+    REQUIRE(s.p != s.q);
+    REQUIRE(s.p >= 0);
+    REQUIRE(s.q >= 0);
+    REQUIRE(s.p < rows * cols);
+    REQUIRE(s.q < rows * cols);
+    // Index i·cols + j (2.1): neighbours differ by one row or one column, never both.
+    const int dr = std::abs(s.p / cols - s.q / cols), dc = std::abs(s.p % cols - s.q % cols);
+    CHECK(dr + dc == 1);
+    pairs.insert(std::minmax(s.p, s.q));
+  }
+  CHECK(pairs.size() == springs.size());  // no pair twice, in either order
+}
+
+TEST_CASE("Structural springs carry the structural family's values", "[task2][topology]") {
+  INFO("equation (2.2); each spring: family structural, k, b and rest length of the family");
+  const SpringFamilyParameters family{true, 31.0, 0.7, 1.25};
+  for (const Spring& s : structural_springs(3, 4, family)) {
+    CHECK(s.family == SpringFamily::structural);
+    CHECK(s.k == family.k);
+    CHECK(s.b == family.b);
+    CHECK(s.rest_length == family.rest_length);
+  }
+}
+
+TEST_CASE("Structural springs join particles one spacing apart: the grid at rest feels no force",
+          "[task2][topology][spring]") {
+  INFO("equations (2.2), (2.3): at rest every spring has its rest length, so every F_i = 0");
+  const Scene scene = build_scene(lab_grid(4, 3, false, 0.01, "explicit-euler"), implementation());
+  REQUIRE_FALSE(scene.springs.empty());
+  for (const Spring& s : scene.springs)
+    CHECK_THAT((scene.particles.position.col(s.p) - scene.particles.position.col(s.q)).norm(),
+               WithinAbs(s.rest_length, 1e-12));
+  const Vectors f = summed_forces(scene.springs, scene.particles.position, scene.particles.velocity);
+  CHECK(f.norm() <= 1e-12);
+}
+
+TEST_CASE("Spring forces: the sum is minus the gradient of the total spring energy",
+          "[task2][spring]") {
+  INFO("equations (2.3), (1.1): F_i = -dE/dr_i with E = sum of 1/2 k (L - l0)^2, by finite differences");
+  Scene scene = random_grid(3, 4, false, 21);
+  const Vectors r = scene.particles.position;
+  const Vectors still = Vectors::Zero(2, r.cols());
+  const Vectors f = summed_forces(scene.springs, r, still);
+  const double d = 1e-6;
+  for (int i = 0; i < r.cols(); ++i)
+    for (int axis = 0; axis < 2; ++axis) {
+      Vectors plus = r, minus = r;
+      plus(axis, i) += d;
+      minus(axis, i) -= d;
+      const double gradient =
+          (spring_energy(scene.springs, plus) - spring_energy(scene.springs, minus)) / (2 * d);
+      CAPTURE(i, axis);
+      CHECK_THAT(f(axis, i), WithinAbs(-gradient, 1e-6 * (1.0 + std::abs(gradient))));
+    }
+}
+
+TEST_CASE("Damper forces: minus the gradient of the dissipation, so they never add energy",
+          "[task2][damper]") {
+  INFO("equations (2.3), (1.2): F_i = -dR/dv_i with R = sum of 1/2 b |v_p - v_q|^2; power = -2R");
+  Scene scene = random_grid(3, 4, false, 22);
+  // Every spring at its rest length, so only the dampers act.
+  const Vectors r = build_scene(lab_grid(3, 4, false, 0.01, "explicit-euler"), implementation())
+                        .particles.position;
+  const Vectors& v = scene.particles.velocity;
+  const Vectors f = summed_forces(scene.springs, r, v);
+  double dissipation = 0.0;  // R
+  for (const Spring& s : scene.springs)
+    dissipation += 0.5 * s.b * (v.col(s.p) - v.col(s.q)).squaredNorm();
+  double power = 0.0;
+  for (int i = 0; i < r.cols(); ++i) power += f.col(i).dot(v.col(i));
+  CHECK(power <= 0.0);
+  CHECK_THAT(power, WithinRel(-2.0 * dissipation, 1e-12));
+  // And per particle: F_i = -sum over its springs of b (v_i - v_j), from dR/dv_i.
+  Vectors expected = Vectors::Zero(2, r.cols());
+  for (const Spring& s : scene.springs) {
+    expected.col(s.p) -= s.b * (v.col(s.p) - v.col(s.q));
+    expected.col(s.q) -= s.b * (v.col(s.q) - v.col(s.p));
+  }
+  for (int i = 0; i < r.cols(); ++i) {
+    CAPTURE(i);
+    CHECK_THAT(Vec2(f.col(i)), IsNear(expected.col(i), 1e-12));
+  }
+}
+
+TEST_CASE("Spring forces are added to what is already there", "[task2][spring]") {
+  INFO("accumulate_spring_forces adds to `force`; it does not clear it (other forces come first)");
+  Scene scene = random_grid(2, 2, false, 23);
+  const Vectors& r = scene.particles.position;
+  const Vectors& v = scene.particles.velocity;
+  Vectors force = Vectors::Constant(2, r.cols(), 0.5);
+  accumulate_spring_forces(scene.springs, r, v, force);
+  const Vectors alone = summed_forces(scene.springs, r, v);
+  REQUIRE(alone.norm() > 0.1);
+  CHECK((force - alone - Vectors::Constant(2, r.cols(), 0.5)).norm() <= 1e-12);
+}
+
+TEST_CASE("Spring forces: internal forces sum to zero, and without dampers their torque too",
+          "[task2][momentum]") {
+  INFO("equation (2.4): F_qp = -F_pq, so sum F_i = 0; central springs give sum r_i x F_i = 0");
+  const unsigned seed = GENERATE(31u, 32u, 33u, 34u);
+  Scene scene = random_grid(3, 4, false, seed);
+  const Vectors& r = scene.particles.position;
+  const Vectors f = summed_forces(scene.springs, r, scene.particles.velocity);
+  CAPTURE(seed);
+  CHECK_THAT(Vec2(f.rowwise().sum()), IsNear(Vec2::Zero(), 1e-12));
+  for (Spring& s : scene.springs) s.b = 0.0;
+  const Vectors central = summed_forces(scene.springs, r, scene.particles.velocity);
+  double torque = 0.0;
+  for (int i = 0; i < r.cols(); ++i) torque += r(0, i) * central(1, i) - r(1, i) * central(0, i);
+  CHECK_THAT(torque, WithinAbs(0.0, 1e-11));
+}
+
+TEST_CASE("Grid: total momentum is conserved over thousands of steps", "[task2][momentum]") {
+  INFO("equation (2.4): no net internal force, so P = sum m_i v_i never changes");
+  Scene scene = random_grid(2, 2, false, 41);
+  scene.parameters.step = 0.004;  // below explicit Euler's limit for this grid
+  Simulation sim(std::move(scene), implementation());
+  const Vec2 start = sim.diagnostics().momentum;
+  REQUIRE(start.norm() > 0.1);
+  double worst = 0.0;
+  run(sim, 5000, [&](const Simulation& s) {
+    worst = std::max(worst, (s.diagnostics().momentum - start).norm());
+  });
+  CAPTURE(start, worst);
+  CHECK(worst <= 1e-12);
+}
+
+TEST_CASE("Grid: a mirror-symmetric start moves mirror-symmetrically", "[task2][symmetry]") {
+  INFO("equations (2.1)-(2.4): mirroring the grid left-right mirrors its motion");
+  const int rows = 3, cols = 4;  // not square, so rows and columns cannot be mixed up unseen
+  Scene scene = build_scene(lab_grid(rows, cols, false, 0.004, "explicit-euler"), implementation());
+  Vectors& r = scene.particles.position;
+  // Move the top corners apart and the bottom-middle pair down, symmetrically about x = 1.5.
+  r.col(at(0, 0, cols)) += Vec2(-0.2, 0.15);
+  r.col(at(0, 3, cols)) += Vec2(0.2, 0.15);
+  r.col(at(2, 1, cols)) += Vec2(0.05, -0.2);
+  r.col(at(2, 2, cols)) += Vec2(-0.05, -0.2);
+  Simulation sim(std::move(scene), implementation());
+  const double axis = 1.5;
+  double worst = 0.0;
+  run(sim, 2000, [&](const Simulation& s) {
+    const Particles& p = s.particles();
+    for (int row = 0; row < rows; ++row)
+      for (int col = 0; col < cols; ++col) {
+        const Vec2 a = p.position.col(at(row, col, cols));
+        const Vec2 b = p.position.col(at(row, cols - 1 - col, cols));
+        worst = std::max({worst, std::abs(a.x() + b.x() - 2 * axis), std::abs(a.y() - b.y())});
+      }
+  });
+  CAPTURE(worst);
+  CHECK(worst <= 1e-10);
+  CHECK(sim.diagnostics().kinetic > 0.0);
+}
+
+TEST_CASE("Grid: explicit Euler grows at the rate the linear theory predicts", 
+          "[task2][euler][stability]") {
+  INFO("the largest |1 + h lambda| over the eigenvalues lambda of the linearised grid (handout 1.6)");
+  const SceneParameters p = task_scene(2);
+  const LinearModel model = linear_model_at_rest(p, implementation());
+  const double limit = explicit_euler_critical_step(model);
+  REQUIRE(limit < p.step);  // the lab step is beyond it
+  const int which = GENERATE(0, 1, 2);  // the lab step, just above the limit, just below it
+  const double h = std::array{p.step, 1.1 * limit, 0.9 * limit}[std::size_t(which)];
+  Scene scene = perturbed_at_rest(p, implementation(), 1e-9, 5);
+  scene.parameters.step = h;
+  const double predicted = explicit_euler_growth_factor(model, h);
+  const double measured = measured_growth_factor(std::move(scene), implementation(),
+                                                 h == p.step ? 3000 : 60000);
+  CAPTURE(h, limit, predicted, measured);
+  CHECK_THAT(measured, WithinAbs(predicted, 0.05 * std::abs(predicted - 1.0)));
+  CHECK((measured > 1.0) == (h > limit));
+}

@@ -1,0 +1,172 @@
+// Task 3: the shear springs (3.1), each family with its own values (3.2).
+// Every expectation comes from physics or from the theory of the method, computed here.
+#include "lab_testing.hpp"
+#include "springlab/diagnostics.hpp"
+#include "springlab/task2_four_masses.hpp"
+#include "springlab/task3_shear_springs.hpp"
+#include "springlab/this_implementation.hpp"
+
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <set>
+#include <utility>
+
+using namespace springlab;
+using namespace springlab::testing;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+TEST_CASE("Shear springs: the count, both diagonals of each cell once, no self-springs",
+          "[task3][topology]") {
+  INFO("equation (3.1): 2 (rows-1)(cols-1) springs, [i,j]-[i+1,j+1] and [i,j+1]-[i+1,j]");
+  const auto [rows, cols] = GENERATE(std::pair{1, 2}, std::pair{2, 2}, std::pair{3, 3},
+                                     std::pair{3, 5}, std::pair{5, 3}, std::pair{4, 6});
+  const SpringFamilyParameters family{true, 7.0, 0.05, std::numbers::sqrt2};
+  const std::vector<Spring> springs = shear_springs(rows, cols, family);
+  CAPTURE(rows, cols);
+  REQUIRE(springs.size() == std::size_t(2 * (rows - 1) * (cols - 1)));
+  std::set<std::pair<int, int>> pairs;
+  std::set<std::pair<int, int>> cells_and_direction;
+  for (const Spring& s : springs) {
+    CAPTURE(s.p, s.q);
+    REQUIRE(s.p != s.q);
+    REQUIRE(std::min(s.p, s.q) >= 0);
+    REQUIRE(std::max(s.p, s.q) < rows * cols);
+    const int dr = s.q / cols - s.p / cols, dc = s.q % cols - s.p % cols;
+    CHECK(std::abs(dr) == 1);  // index i·cols + j (2.1): one row and one column apart
+    CHECK(std::abs(dc) == 1);
+    pairs.insert(std::minmax(s.p, s.q));
+    const int top = std::min(s.p / cols, s.q / cols), left = std::min(s.p % cols, s.q % cols);
+    cells_and_direction.insert({at(top, left, cols), dr * dc});  // ↘ or ↙ in that cell
+  }
+  CHECK(pairs.size() == springs.size());
+  CHECK(cells_and_direction.size() == springs.size());  // every cell has both diagonals
+}
+
+TEST_CASE("Shear springs carry the shear family's own values", "[task3][topology]") {
+  INFO("equation (3.2): family shear with the shear k, b and rest length, not the structural ones");
+  const SpringFamilyParameters family{true, 7.5, 0.06, 1.5};
+  for (const Spring& s : shear_springs(3, 4, family)) {
+    CHECK(s.family == SpringFamily::shear);
+    CHECK(s.k == family.k);
+    CHECK(s.b == family.b);
+    CHECK(s.rest_length == family.rest_length);
+  }
+}
+
+TEST_CASE("Shear springs join diagonal neighbours: the lab grid at rest feels no force",
+          "[task3][topology][spring]") {
+  INFO("equations (3.1), (3.2): a diagonal at rest is sqrt(2) m long, the lab's shear rest length");
+  const Scene scene = build_scene(lab_grid(3, 4, true, 0.01, "explicit-euler"), implementation());
+  int shear = 0;
+  for (const Spring& s : scene.springs) {
+    shear += s.family == SpringFamily::shear;
+    CHECK_THAT((scene.particles.position.col(s.p) - scene.particles.position.col(s.q)).norm(),
+               WithinAbs(s.rest_length, 1e-12));
+  }
+  CHECK(shear == 2 * 2 * 3);
+  Vectors f = Vectors::Zero(2, scene.particles.size());
+  accumulate_spring_forces(scene.springs, scene.particles.position, scene.particles.velocity, f);
+  CHECK(f.norm() <= 1e-12);
+}
+
+TEST_CASE("Grid with shear springs: forces are minus the energy gradient and sum to zero",
+          "[task3][spring][momentum]") {
+  INFO("equations (2.3), (3.1): F_i = -dE/dr_i over both families; sum F_i = 0");
+  Scene scene = build_scene(lab_grid(3, 3, true, 0.01, "explicit-euler"), implementation());
+  randomise(scene.particles, 0.25, 1.0, 51);
+  const Vectors r = scene.particles.position;
+  const Vectors still = Vectors::Zero(2, r.cols());
+  Vectors f = Vectors::Zero(2, r.cols());
+  accumulate_spring_forces(scene.springs, r, still, f);
+  const double d = 1e-6;
+  for (int i = 0; i < r.cols(); ++i)
+    for (int axis = 0; axis < 2; ++axis) {
+      Vectors plus = r, minus = r;
+      plus(axis, i) += d;
+      minus(axis, i) -= d;
+      const double gradient =
+          (spring_energy(scene.springs, plus) - spring_energy(scene.springs, minus)) / (2 * d);
+      CAPTURE(i, axis);
+      CHECK_THAT(f(axis, i), WithinAbs(-gradient, 1e-6 * (1.0 + std::abs(gradient))));
+    }
+  Vectors moving = Vectors::Zero(2, r.cols());
+  accumulate_spring_forces(scene.springs, r, scene.particles.velocity, moving);
+  CHECK_THAT(Vec2(moving.rowwise().sum()), IsNear(Vec2::Zero(), 1e-12));
+}
+
+TEST_CASE("Grid with shear springs: a square no longer shears freely", "[task3][spring]") {
+  INFO("without shear springs a 2x2 square can shear at no cost; (3.1) makes shearing cost energy");
+  // Shear the square: the bottom row slides right by s. Structural springs barely notice (their
+  // stretch is second order in s); the diagonals change length to first order.
+  const double s = 1e-3;
+  Scene scene = build_scene(lab_grid(2, 2, true, 0.01, "explicit-euler"), implementation());
+  scene.particles.position.col(2) += Vec2(s, 0.0);
+  scene.particles.position.col(3) += Vec2(s, 0.0);
+  double structural = 0.0, shear = 0.0;
+  for (const Spring& spring : scene.springs)
+    (spring.family == SpringFamily::shear ? shear : structural) +=
+        spring_energy({spring}, scene.particles.position);
+  // Each diagonal's length changes by about s/sqrt(2): energy 2 · ½ k (s/√2)² = k s² / 2.
+  CHECK_THAT(shear, WithinRel(0.5 * 7.0 * s * s, 0.01));
+  CHECK(structural < 1e-3 * shear);
+}
+
+TEST_CASE("Grid with shear springs: momentum is conserved over thousands of steps",
+          "[task3][momentum]") {
+  INFO("equation (2.4) over both families: P = sum m_i v_i never changes");
+  Scene scene = build_scene(lab_grid(3, 3, true, 0.003, "explicit-euler"), implementation());
+  randomise(scene.particles, 0.2, 0.8, 61);
+  Simulation sim(std::move(scene), implementation());
+  const Vec2 start = sim.diagnostics().momentum;
+  REQUIRE(start.norm() > 0.1);
+  double worst = 0.0;
+  run(sim, 5000, [&](const Simulation& s) {
+    worst = std::max(worst, (s.diagnostics().momentum - start).norm());
+  });
+  CAPTURE(start, worst);
+  CHECK(worst <= 1e-12);
+}
+
+TEST_CASE("Grid with shear springs: a symmetric start moves symmetrically", "[task3][symmetry]") {
+  INFO("mirroring the grid about its diagonal mirrors the motion: [i,j] <-> [j,i]");
+  const int n = 3;
+  Scene scene = build_scene(lab_grid(n, n, true, 0.003, "explicit-euler"), implementation());
+  // Grid positions (col, -row) mirror about the line y = -x; move particles symmetrically.
+  const auto mirror = [](const Vec2& a) { return Vec2(-a.y(), -a.x()); };
+  Vectors& r = scene.particles.position;
+  r.col(at(2, 2, n)) += Vec2(0.2, -0.2);      // on the diagonal, along it
+  r.col(at(0, 1, n)) += Vec2(0.1, 0.15);      // and a pair off it
+  r.col(at(1, 0, n)) += mirror(Vec2(0.1, 0.15));
+  Simulation sim(std::move(scene), implementation());
+  double worst = 0.0;
+  run(sim, 3000, [&](const Simulation& s) {
+    const Vectors& p = s.particles().position;
+    for (int row = 0; row < n; ++row)
+      for (int col = 0; col < n; ++col)
+        worst = std::max(worst, (Vec2(p.col(at(col, row, n))) - mirror(p.col(at(row, col, n)))).norm());
+  });
+  CAPTURE(worst);
+  CHECK(worst <= 1e-10);
+  CHECK(sim.diagnostics().kinetic > 0.0);
+}
+
+TEST_CASE("Grid with shear springs: explicit Euler grows at the rate the linear theory predicts",
+          "[task3][euler][stability]") {
+  INFO("the largest |1 + h lambda| over the eigenvalues of the linearised grid (handout 1.6)");
+  const SceneParameters p = task_scene(3);
+  const LinearModel model = linear_model_at_rest(p, implementation());
+  const double limit = explicit_euler_critical_step(model);
+  REQUIRE(limit < p.step);
+  const int which = GENERATE(0, 1, 2);  // the lab step, just above the limit, just below it
+  const double h = std::array{p.step, 1.1 * limit, 0.9 * limit}[std::size_t(which)];
+  Scene scene = perturbed_at_rest(p, implementation(), 1e-9, 6);
+  scene.parameters.step = h;
+  const double predicted = explicit_euler_growth_factor(model, h);
+  const double measured = measured_growth_factor(std::move(scene), implementation(),
+                                                 h == p.step ? 3000 : 60000);
+  CAPTURE(h, limit, predicted, measured);
+  CHECK_THAT(measured, WithinAbs(predicted, 0.05 * std::abs(predicted - 1.0)));
+  CHECK((measured > 1.0) == (h > limit));
+}
