@@ -18,15 +18,18 @@ endfunction()
 
 # An object library for one file in one namespace, made once and shared by every build using it.
 function(springlab_object out ns tree file)
-  string(MAKE_C_IDENTIFIER "obj_${ns}_${tree}_${file}" target)
+  get_filename_component(name "${file}" NAME_WE)
+  string(MD5 hash "${file}")
+  string(SUBSTRING "${hash}" 0 8 hash)
+  string(MAKE_C_IDENTIFIER "obj_${ns}_${name}_${hash}" target)
   if(NOT TARGET ${target})
     add_library(${target} OBJECT "${file}")
     target_compile_definitions(${target} PRIVATE SPRINGLAB_IMPL=${ns})
     target_link_libraries(${target} PRIVATE springlab_core)
-    if(tree STREQUAL "tasks")
-      target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS})  # warn, never fail
-    else()
+    if(tree STREQUAL "solutions")
       target_link_libraries(${target} PRIVATE springlab_warnings)
+    else()  # a student's file or a mutant: warn, never fail the build
+      target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS})
     endif()
   endif()
   set(${out} ${target} PARENT_SCOPE)

@@ -11,6 +11,24 @@ Vec2 grid_position(int row, int col, double spacing) {
   return Vec2(col * spacing, -row * spacing);
 }
 
+namespace {
+
+// Springs come from student code: refuse any that would index outside the particles, so a
+// mistake shows as a message instead of memory corruption.
+void check_springs(const std::vector<Spring>& springs, int particles, const char* builder,
+                   int task) {
+  for (const Spring& s : springs) {
+    const bool inside = s.p >= 0 && s.p < particles && s.q >= 0 && s.q < particles;
+    if (!inside || s.p == s.q)
+      throw InvalidParameter(
+          std::string(builder) + " (task " + std::to_string(task) + ")",
+          "a spring from " + std::to_string(s.p) + " to " + std::to_string(s.q),
+          "both ends must be different particles from 0 to " + std::to_string(particles - 1));
+  }
+}
+
+}  // namespace
+
 Scene build_scene(const SceneParameters& p, const Implementation& impl) {
   validate(p);
   Scene scene;
@@ -26,9 +44,13 @@ Scene build_scene(const SceneParameters& p, const Implementation& impl) {
   particles.mass = Eigen::VectorXd::Constant(n, p.mass);
   particles.pinned.assign(n, false);
 
-  if (p.structural.enabled) scene.springs = impl.structural_springs(p.rows, p.cols, p.structural);
+  if (p.structural.enabled) {
+    scene.springs = impl.structural_springs(p.rows, p.cols, p.structural);
+    check_springs(scene.springs, n, "structural_springs", 2);
+  }
   if (p.shear.enabled) {
     const auto shear = impl.shear_springs(p.rows, p.cols, p.shear);
+    check_springs(shear, n, "shear_springs", 3);
     scene.springs.insert(scene.springs.end(), shear.begin(), shear.end());
   }
   return scene;
