@@ -7,6 +7,7 @@
 #include "springlab/this_implementation.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -41,7 +42,8 @@ TEST_CASE("Parameters: the defaults are the lab's values", "[core][parameters]")
   CHECK(p.shear.b == 0.05);
   CHECK(p.shear.rest_length == std::sqrt(2.0));
   CHECK_NOTHROW(validate(p));
-  for (int task = 1; task <= 4; ++task) CHECK_NOTHROW(validate(task_scene(task)));
+  for (int task = 1; task <= 4; ++task)
+    CHECK_NOTHROW(validate(task_scene(task)));
 }
 
 TEST_CASE("Parameters: bad values are rejected naming the field, the value and the range",
@@ -50,12 +52,12 @@ TEST_CASE("Parameters: bad values are rejected naming the field, the value and t
     const char* key;
     const char* value;
   };
-  const Case bad = GENERATE(Case{"mass", "0"}, Case{"mass", "-1"}, Case{"step", "0"},
-                            Case{"step", "-0.01"}, Case{"structural.rest_length", "0"},
-                            Case{"shear.rest_length", "-1.4"}, Case{"structural.k", "nan"},
-                            Case{"shear.b", "inf"}, Case{"spacing", "-inf"}, Case{"rows", "0"},
-                            Case{"cols", "2.5"}, Case{"structural.k", "-5"},
-                            Case{"displacement.x", "1e400"});
+  const Case bad =
+      GENERATE(Case{"mass", "0"}, Case{"mass", "-1"}, Case{"step", "0"}, Case{"step", "-0.01"},
+               Case{"structural.rest_length", "0"}, Case{"shear.rest_length", "-1.4"},
+               Case{"structural.k", "nan"}, Case{"shear.b", "inf"}, Case{"spacing", "-inf"},
+               Case{"rows", "0"}, Case{"cols", "2.5"}, Case{"structural.k", "-5"},
+               Case{"displacement.x", "1e400"});
   SceneParameters p;
   const std::string message = rejection([&] { set_parameter(p, bad.key, bad.value); });
   CAPTURE(bad.key, bad.value, message);
@@ -83,7 +85,10 @@ TEST_CASE("Parameters: an unknown key suggests the nearest known one", "[core][p
   CHECK_THAT(rejection([&] { set_parameter(p, "structural.stiffness", "3"); }),
              Contains("no parameter \"structural.stiffness\"") && Contains("structural."));
   CHECK_THAT(rejection([&] { set_parameter(p, "mas", "3"); }), Contains("did you mean \"mass\""));
-  CHECK_THAT(rejection([&] { set_parameter(p, "integrator", "rk5"); validate(p); }),
+  CHECK_THAT(rejection([&] {
+               set_parameter(p, "integrator", "rk5");
+               validate(p);
+             }),
              Contains("one of explicit-euler, verlet"));
 }
 
@@ -103,7 +108,8 @@ TEST_CASE("Parameters: --set changes every kind of field", "[core][parameters]")
 
 TEST_CASE("Scene files: values, and errors with the file, the line and the key",
           "[core][scene-file]") {
-  const std::string path = "springlab-core-test-scene.toml";
+  const std::string path =
+      (std::filesystem::temp_directory_path() / "springlab-core-test-scene.toml").string();
   {
     std::ofstream file(path);
     file << "name = \"wide\"\nrows = 3\ncols = 5\n[structural]\nk = 40\n";
@@ -149,7 +155,7 @@ TEST_CASE("Divergence: explicit Euler at the lab step stops with when, where and
     FAIL("explicit Euler at h = 0.01 s grows without bound, but no divergence was reported");
   } catch (const DivergenceError& error) {
     CAPTURE(error.what());
-    CHECK(error.time() > 1.0);  // the growth is slow (about x1.005 a step)...
+    CHECK(error.time() > 1.0);   // the growth is slow (about x1.005 a step)...
     CHECK(error.time() < 60.0);  // ...but it is caught long before any NaN
     CHECK(error.particle() >= 0);
     CHECK(error.quantity() == "total energy");
@@ -173,10 +179,10 @@ TEST_CASE("Divergence: a NaN is reported with its particle and quantity", "[core
 
 TEST_CASE("Stability theory: two masses match the closed forms", "[core][stability]") {
   const LabValues lab;
-  const Scene scene = build_scene(two_masses(lab.k, lab.b, lab.mass, 0.0, lab.h, "verlet"),
-                                  implementation());
-  const LinearModel model = linearise(scene.springs, scene.particles.position,
-                                      scene.particles.mass, scene.particles.pinned);
+  const Scene scene =
+      build_scene(two_masses(lab.k, lab.b, lab.mass, 0.0, lab.h, "verlet"), implementation());
+  const LinearModel model = linearise(scene.springs, scene.particles.position, scene.particles.mass,
+                                      scene.particles.pinned);
   const TwoMassExact exact{lab.k, lab.b, lab.mass, 0.0};
   CHECK_THAT(highest_frequency(model), WithinRel(exact.omega(), 1e-12));
   CHECK_THAT(explicit_euler_critical_step(model), WithinRel(lab.b / lab.k, 1e-9));

@@ -1,8 +1,8 @@
 // Task 1: the spring (1.1), the damper (1.2) and the explicit Euler step (1.4)-(1.5).
 // Every expectation comes from physics or from the theory of the method, computed here.
+#include "springlab/task1_two_masses.hpp"
 #include "lab_testing.hpp"
 #include "springlab/diagnostics.hpp"
-#include "springlab/task1_two_masses.hpp"
 #include "springlab/this_implementation.hpp"
 
 #include <cmath>
@@ -105,7 +105,8 @@ TEST_CASE("Damper: never adds energy", "[task1][damper]") {
   std::uniform_real_distribution<double> unit(-3.0, 3.0);
   for (int trial = 0; trial < 50; ++trial) {
     const Vec2 v_p(unit(engine), unit(engine)), v_q(unit(engine), unit(engine));
-    const double power = damper_force(v_p, v_q, 0.1).dot(v_p) + damper_force(v_q, v_p, 0.1).dot(v_q);
+    const double power =
+        damper_force(v_p, v_q, 0.1).dot(v_p) + damper_force(v_q, v_p, 0.1).dot(v_q);
     CAPTURE(trial, v_p, v_q, power);
     CHECK(power <= 0.0);
     CHECK_THAT(power, WithinRel(-0.1 * (v_p - v_q).squaredNorm(), 1e-12));
@@ -189,8 +190,8 @@ TEST_CASE("Explicit Euler converges with order 1 to the exact two-mass solution"
                    implementation());
     double error = 0.0;
     run(sim, std::lround(duration / h), [&](const Simulation& s) {
-      const double stretch = (s.particles().position.col(1) - s.particles().position.col(0)).norm() -
-                             lab.rest;
+      const double stretch =
+          (s.particles().position.col(1) - s.particles().position.col(0)).norm() - lab.rest;
       error = std::max(error, std::abs(stretch - exact.stretch(s.time())));
     });
     errors.push_back(error);
@@ -204,7 +205,7 @@ TEST_CASE("Explicit Euler at the lab step grows at the rate theory predicts",
           "[task1][euler][stability]") {
   INFO("equation (1.6): each step multiplies the amplitude by sqrt(1 - 2 zeta w h + w^2 h^2)");
   const LabValues lab;
-  const TwoMassExact exact{lab.k, lab.b, lab.mass, 1e-6};  // small: the motion stays linear
+  const TwoMassExact exact{lab.k, lab.b, lab.mass, 1e-6};     // small: the motion stays linear
   const double h = GENERATE(0.01, 0.005 * 1.1, 0.005 * 0.9);  // lab step; just above, below b/k
   const double w = exact.omega(), z = exact.zeta();
   const double predicted = std::sqrt(1.0 - 2.0 * z * w * h + w * w * h * h);

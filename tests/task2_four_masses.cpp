@@ -1,9 +1,9 @@
 // Task 2: the structural springs of a grid (2.1)-(2.2) and the forces of all springs (2.3)-(2.4).
 // Every expectation comes from physics or from the theory of the method, computed here.
+#include "springlab/task2_four_masses.hpp"
 #include "lab_testing.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/stability.hpp"
-#include "springlab/task2_four_masses.hpp"
 #include "springlab/this_implementation.hpp"
 
 #include <array>
@@ -37,9 +37,9 @@ Scene random_grid(int rows, int cols, bool shear, unsigned seed) {
 TEST_CASE("Structural springs: the count, each neighbour pair once, no self-springs",
           "[task2][topology]") {
   INFO("equation (2.2): rows*(cols-1) + cols*(rows-1) springs, right and down neighbours");
-  const auto [rows, cols] = GENERATE(std::pair{1, 2}, std::pair{2, 1}, std::pair{2, 2},
-                                     std::pair{3, 3}, std::pair{3, 5}, std::pair{5, 3},
-                                     std::pair{1, 7}, std::pair{4, 6});
+  const auto [rows, cols] =
+      GENERATE(std::pair{1, 2}, std::pair{2, 1}, std::pair{2, 2}, std::pair{3, 3}, std::pair{3, 5},
+               std::pair{5, 3}, std::pair{1, 7}, std::pair{4, 6});
   const SpringFamilyParameters family{true, 20.0, 0.1, 1.0};
   const std::vector<Spring> springs = structural_springs(rows, cols, family);
   CAPTURE(rows, cols);
@@ -79,13 +79,16 @@ TEST_CASE("Structural springs join particles one spacing apart: the grid at rest
   for (const Spring& s : scene.springs)
     CHECK_THAT((scene.particles.position.col(s.p) - scene.particles.position.col(s.q)).norm(),
                WithinAbs(s.rest_length, 1e-12));
-  const Vectors f = summed_forces(scene.springs, scene.particles.position, scene.particles.velocity);
+  const Vectors f =
+      summed_forces(scene.springs, scene.particles.position, scene.particles.velocity);
   CHECK(f.norm() <= 1e-12);
 }
 
 TEST_CASE("Spring forces: the sum is minus the gradient of the total spring energy",
           "[task2][spring]") {
-  INFO("equations (2.3), (1.1): F_i = -dE/dr_i with E = sum of 1/2 k (L - l0)^2, by finite differences");
+  INFO(
+      "equations (2.3), (1.1): F_i = -dE/dr_i with E = sum of 1/2 k (L - l0)^2, by finite "
+      "differences");
   Scene scene = random_grid(3, 4, false, 21);
   const Vectors r = scene.particles.position;
   const Vectors still = Vectors::Zero(2, r.cols());
@@ -116,7 +119,8 @@ TEST_CASE("Damper forces: minus the gradient of the dissipation, so they never a
   for (const Spring& s : scene.springs)
     dissipation += 0.5 * s.b * (v.col(s.p) - v.col(s.q)).squaredNorm();
   double power = 0.0;
-  for (int i = 0; i < r.cols(); ++i) power += f.col(i).dot(v.col(i));
+  for (int i = 0; i < r.cols(); ++i)
+    power += f.col(i).dot(v.col(i));
   CHECK(power <= 0.0);
   CHECK_THAT(power, WithinRel(-2.0 * dissipation, 1e-12));
   // And per particle: F_i = -sum over its springs of b (v_i - v_j), from dR/dv_i.
@@ -152,10 +156,12 @@ TEST_CASE("Spring forces: internal forces sum to zero, and without dampers their
   const Vectors f = summed_forces(scene.springs, r, scene.particles.velocity);
   CAPTURE(seed);
   CHECK_THAT(Vec2(f.rowwise().sum()), IsNear(Vec2::Zero(), 1e-12));
-  for (Spring& s : scene.springs) s.b = 0.0;
+  for (Spring& s : scene.springs)
+    s.b = 0.0;
   const Vectors central = summed_forces(scene.springs, r, scene.particles.velocity);
   double torque = 0.0;
-  for (int i = 0; i < r.cols(); ++i) torque += r(0, i) * central(1, i) - r(1, i) * central(0, i);
+  for (int i = 0; i < r.cols(); ++i)
+    torque += r(0, i) * central(1, i) - r(1, i) * central(0, i);
   CHECK_THAT(torque, WithinAbs(0.0, 1e-11));
 }
 
@@ -201,20 +207,22 @@ TEST_CASE("Grid: a mirror-symmetric start moves mirror-symmetrically", "[task2][
   CHECK(sim.diagnostics().kinetic > 0.0);
 }
 
-TEST_CASE("Grid: explicit Euler grows at the rate the linear theory predicts", 
+TEST_CASE("Grid: explicit Euler grows at the rate the linear theory predicts",
           "[task2][euler][stability]") {
-  INFO("the largest |1 + h lambda| over the eigenvalues lambda of the linearised grid (handout 1.6)");
+  INFO(
+      "the largest |1 + h lambda| over the eigenvalues lambda of the linearised grid (handout "
+      "1.6)");
   const SceneParameters p = task_scene(2);
   const LinearModel model = linear_model_at_rest(p, implementation());
   const double limit = explicit_euler_critical_step(model);
-  REQUIRE(limit < p.step);  // the lab step is beyond it
+  REQUIRE(limit < p.step);              // the lab step is beyond it
   const int which = GENERATE(0, 1, 2);  // the lab step, just above the limit, just below it
   const double h = std::array{p.step, 1.1 * limit, 0.9 * limit}[std::size_t(which)];
   Scene scene = perturbed_at_rest(p, implementation(), 1e-9, 5);
   scene.parameters.step = h;
   const double predicted = explicit_euler_growth_factor(model, h);
-  const double measured = measured_growth_factor(std::move(scene), implementation(),
-                                                 h == p.step ? 3000 : 60000);
+  const double measured =
+      measured_growth_factor(std::move(scene), implementation(), h == p.step ? 3000 : 60000);
   CAPTURE(h, limit, predicted, measured);
   CHECK_THAT(measured, WithinAbs(predicted, 0.05 * std::abs(predicted - 1.0)));
   CHECK((measured > 1.0) == (h > limit));

@@ -1,9 +1,9 @@
 // Task 3: the shear springs (3.1), each family with its own values (3.2).
 // Every expectation comes from physics or from the theory of the method, computed here.
+#include "springlab/task3_shear_springs.hpp"
 #include "lab_testing.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/task2_four_masses.hpp"
-#include "springlab/task3_shear_springs.hpp"
 #include "springlab/this_implementation.hpp"
 
 #include <array>
@@ -136,8 +136,8 @@ TEST_CASE("Grid with shear springs: a symmetric start moves symmetrically", "[ta
   // Grid positions (col, -row) mirror about the line y = -x; move particles symmetrically.
   const auto mirror = [](const Vec2& a) { return Vec2(-a.y(), -a.x()); };
   Vectors& r = scene.particles.position;
-  r.col(at(2, 2, n)) += Vec2(0.2, -0.2);      // on the diagonal, along it
-  r.col(at(0, 1, n)) += Vec2(0.1, 0.15);      // and a pair off it
+  r.col(at(2, 2, n)) += Vec2(0.2, -0.2);  // on the diagonal, along it
+  r.col(at(0, 1, n)) += Vec2(0.1, 0.15);  // and a pair off it
   r.col(at(1, 0, n)) += mirror(Vec2(0.1, 0.15));
   Simulation sim(std::move(scene), implementation());
   double worst = 0.0;
@@ -145,7 +145,8 @@ TEST_CASE("Grid with shear springs: a symmetric start moves symmetrically", "[ta
     const Vectors& p = s.particles().position;
     for (int row = 0; row < n; ++row)
       for (int col = 0; col < n; ++col)
-        worst = std::max(worst, (Vec2(p.col(at(col, row, n))) - mirror(p.col(at(row, col, n)))).norm());
+        worst =
+            std::max(worst, (Vec2(p.col(at(col, row, n))) - mirror(p.col(at(row, col, n)))).norm());
   });
   CAPTURE(worst);
   CHECK(worst <= 1e-10);
@@ -164,8 +165,8 @@ TEST_CASE("Grid with shear springs: explicit Euler grows at the rate the linear 
   Scene scene = perturbed_at_rest(p, implementation(), 1e-9, 6);
   scene.parameters.step = h;
   const double predicted = explicit_euler_growth_factor(model, h);
-  const double measured = measured_growth_factor(std::move(scene), implementation(),
-                                                 h == p.step ? 3000 : 60000);
+  const double measured =
+      measured_growth_factor(std::move(scene), implementation(), h == p.step ? 3000 : 60000);
   CAPTURE(h, limit, predicted, measured);
   CHECK_THAT(measured, WithinAbs(predicted, 0.05 * std::abs(predicted - 1.0)));
   CHECK((measured > 1.0) == (h > limit));

@@ -1,9 +1,9 @@
 // Task 4: the Störmer–Verlet step with a central-difference velocity, (4.1)-(4.5).
 // Every expectation comes from physics or from the theory of the method, computed here.
+#include "springlab/task4_verlet.hpp"
 #include "lab_testing.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/errors.hpp"
-#include "springlab/task4_verlet.hpp"
 #include "springlab/this_implementation.hpp"
 
 #include <cmath>
@@ -37,7 +37,8 @@ double stretch_of(const Simulation& s) {
 
 }  // namespace
 
-TEST_CASE("Verlet: two steps checked by hand on a damped oscillator", "[task4][verlet][integrator]") {
+TEST_CASE("Verlet: two steps checked by hand on a damped oscillator",
+          "[task4][verlet][integrator]") {
   INFO("(4.3) r_-1 = r0 - h v0 + h^2/2 a0; (4.1)+(4.2) solved exactly; (4.4) the new velocity");
   // For a = -w2 r - c v, (4.1) with (4.2) is linear in r_{n+1}:
   //   (1 + h c/2) r_{n+1} = (2 - h² w2) r_n - (1 - h c/2) r_{n-1}.
@@ -49,9 +50,9 @@ TEST_CASE("Verlet: two steps checked by hand on a damped oscillator", "[task4][v
   const Vectors r0 = r, v0 = v;
   const Vectors r_minus = r0 - h * v0 + 0.5 * h * h * (-oscillator.w2 * r0 - oscillator.c * v0);
   const auto next = [&](const Vectors& now, const Vectors& before) {
-    const Vectors result = ((2.0 - h * h * oscillator.w2) * now -
-                            (1.0 - h * oscillator.c / 2.0) * before) /
-                           (1.0 + h * oscillator.c / 2.0);
+    const Vectors result =
+        ((2.0 - h * h * oscillator.w2) * now - (1.0 - h * oscillator.c / 2.0) * before) /
+        (1.0 + h * oscillator.c / 2.0);
     return result;
   };
   VerletHistory history;
@@ -94,8 +95,9 @@ TEST_CASE("Verlet: a step that cannot settle is reported, not turned into NaN",
   VerletHistory history;
   // (The first step's guess, v_0, already solves (4.1)-(4.2) exactly, so it is the second that
   // must iterate.)
-  CHECK_THROWS_AS((verlet_step(model, 0.01, r, v, history), verlet_step(model, 0.01, r, v, history)),
-                  StepFailed);
+  CHECK_THROWS_AS(
+      (verlet_step(model, 0.01, r, v, history), verlet_step(model, 0.01, r, v, history)),
+      StepFailed);
 }
 
 TEST_CASE("Verlet converges with order 2 to the exact two-mass solution",
@@ -110,8 +112,8 @@ TEST_CASE("Verlet converges with order 2 to the exact two-mass solution",
     run(sim, std::lround(2.0 / h), [&](const Simulation& s) {
       const Vectors& v = s.particles().velocity;
       position_error = std::max(position_error, std::abs(stretch_of(s) - exact.stretch(s.time())));
-      velocity_error = std::max(velocity_error,
-                                std::abs(v(0, 1) - v(0, 0) - exact.stretch_rate(s.time())));
+      velocity_error =
+          std::max(velocity_error, std::abs(v(0, 1) - v(0, 0) - exact.stretch_rate(s.time())));
     });
     position_errors.push_back(position_error);
     velocity_errors.push_back(velocity_error);
@@ -161,7 +163,8 @@ TEST_CASE("Verlet: a mirror-symmetric start moves mirror-symmetrically", "[task4
   CHECK(worst <= 1e-10);
 }
 
-TEST_CASE("Verlet is stable at the lab step on the 3x3 grid for 60 s", "[task4][verlet][stability]") {
+TEST_CASE("Verlet is stable at the lab step on the 3x3 grid for 60 s",
+          "[task4][verlet][stability]") {
   INFO("(4.5): h = 0.01 s is far below 2/w_max for the 3x3 lab grid; the dampers calm it down");
   Simulation sim(task_scene(4), implementation());
   const double start = sim.diagnostics().total();

@@ -5,20 +5,36 @@
 #include <string>
 
 namespace springlab {
-namespace reference { const Implementation& implementation(); }
-namespace student_task1 { const Implementation& implementation(); }
-namespace student_task2 { const Implementation& implementation(); }
-namespace student_task3 { const Implementation& implementation(); }
-namespace student_task4 { const Implementation& implementation(); }
+namespace reference {
+const Implementation& implementation();
+}
+namespace student_task1 {
+const Implementation& implementation();
+}
+namespace student_task2 {
+const Implementation& implementation();
+}
+namespace student_task3 {
+const Implementation& implementation();
+}
+namespace student_task4 {
+const Implementation& implementation();
+}
 
-const Implementation& reference_implementation() { return reference::implementation(); }
+const Implementation& reference_implementation() {
+  return reference::implementation();
+}
 
 const Implementation& student_implementation(int task) {
   switch (task) {
-    case 1: return student_task1::implementation();
-    case 2: return student_task2::implementation();
-    case 3: return student_task3::implementation();
-    case 4: return student_task4::implementation();
+    case 1:
+      return student_task1::implementation();
+    case 2:
+      return student_task2::implementation();
+    case 3:
+      return student_task3::implementation();
+    case 4:
+      return student_task4::implementation();
   }
   throw InvalidParameter("task", std::to_string(task), "1, 2, 3 or 4");
 }

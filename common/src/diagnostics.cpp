@@ -15,7 +15,9 @@ double spring_energy(const std::vector<Spring>& springs, const Vectors& r) {
   return energy;
 }
 
-Vec2 linear_momentum(const Eigen::VectorXd& mass, const Vectors& v) { return v * mass; }
+Vec2 linear_momentum(const Eigen::VectorXd& mass, const Vectors& v) {
+  return v * mass;
+}
 
 double angular_momentum(const Eigen::VectorXd& mass, const Vectors& r, const Vectors& v,
                         const Vec2& about) {

@@ -40,7 +40,9 @@ class Verlet final : public Integrator {
 
 }  // namespace
 
-std::vector<std::string> integrator_names() { return {"explicit-euler", "verlet"}; }
+std::vector<std::string> integrator_names() {
+  return {"explicit-euler", "verlet"};
+}
 
 bool is_integrator_name(std::string_view name) {
   const auto names = integrator_names();

@@ -96,12 +96,13 @@ void validate(const SceneParameters& p) {
             " MiB; at most " + number(std::floor(available / bytes_per_particle)) +
             " particles fit in half of this machine's memory");
   if (p.displaced_particle >= particles)
-    throw InvalidParameter("displaced_particle", std::to_string(p.displaced_particle),
-                           "0 <= displaced_particle <= " + number(particles - 1) +
-                               " (rows x cols - 1)");
+    throw InvalidParameter(
+        "displaced_particle", std::to_string(p.displaced_particle),
+        "0 <= displaced_particle <= " + number(particles - 1) + " (rows x cols - 1)");
   if (!is_integrator_name(p.integrator)) {
     std::string names;
-    for (const auto& name : integrator_names()) names += (names.empty() ? "" : ", ") + name;
+    for (const auto& name : integrator_names())
+      names += (names.empty() ? "" : ", ") + name;
     throw InvalidParameter("integrator", "\"" + p.integrator + "\"", "one of " + names);
   }
 }

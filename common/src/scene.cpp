@@ -81,7 +81,9 @@ SceneParameters task_scene(int task) {
   throw InvalidParameter("scene", "task" + std::to_string(task), "task1, task2, task3 or task4");
 }
 
-std::vector<std::string> task_scene_names() { return {"task1", "task2", "task3", "task4"}; }
+std::vector<std::string> task_scene_names() {
+  return {"task1", "task2", "task3", "task4"};
+}
 
 SceneParameters load_scene(const std::string& name_or_path) {
   for (int task = 1; task <= 4; ++task)

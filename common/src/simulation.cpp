@@ -12,7 +12,8 @@ namespace {
 // Energy of every spring stretched by 10 % of its rest length: the scale of a moderate motion.
 double moderate_energy(const std::vector<Spring>& springs) {
   double energy = 0.0;
-  for (const Spring& s : springs) energy += 0.5 * s.k * std::pow(0.1 * s.rest_length, 2);
+  for (const Spring& s : springs)
+    energy += 0.5 * s.k * std::pow(0.1 * s.rest_length, 2);
   return energy;
 }
 
@@ -37,8 +38,9 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
     : scene_(std::move(scene)),
       impl_(&impl),
       integrator_(make_integrator(scene_.parameters.integrator, impl)),
-      acceleration_function_(
-          [this](const Vectors& r, const Vectors& v) -> const Vectors& { return acceleration(r, v); }),
+      acceleration_function_([this](const Vectors& r, const Vectors& v) -> const Vectors& {
+        return acceleration(r, v);
+      }),
       limits_(limits) {
   // A pinned particle behaves as if infinitely heavy: its acceleration is always zero.
   const Particles& particles = scene_.particles;
@@ -71,17 +73,18 @@ void Simulation::step() {
 }
 
 void Simulation::advance(long steps) {
-  for (long i = 0; i < steps; ++i) step();
+  for (long i = 0; i < steps; ++i)
+    step();
 }
 
 void Simulation::check_divergence(bool check_energy) const {
   const Particles& particles = scene_.particles;
   const bool finite = particles.position.allFinite() && particles.velocity.allFinite();
   if (const auto [particle, quantity] = first_non_finite(particles); !finite)
-    throw DivergenceError(time(), particle, quantity,
-                          "it is no longer a finite number; the step h = " +
-                              std::to_string(scene_.parameters.step) +
-                              " s is probably beyond the method's stability limit");
+    throw DivergenceError(
+        time(), particle, quantity,
+        "it is no longer a finite number; the step h = " + std::to_string(scene_.parameters.step) +
+            " s is probably beyond the method's stability limit");
   if (!check_energy) return;
   const double energy = diagnostics().total();
   if (energy <= limits_.energy_growth * reference_energy_) return;
@@ -89,8 +92,8 @@ void Simulation::check_divergence(bool check_energy) const {
   particles.velocity.colwise().squaredNorm().maxCoeff(&fastest);
   std::ostringstream why;
   why << "the total energy " << energy << " J is more than " << limits_.energy_growth
-      << " times its reference " << reference_energy_ << " J (runaway growth); particle "
-      << fastest << " is the fastest at " << particles.velocity.col(fastest).norm()
+      << " times its reference " << reference_energy_ << " J (runaway growth); particle " << fastest
+      << " is the fastest at " << particles.velocity.col(fastest).norm()
       << " m/s. Springs and dampers cannot add energy, so the step h = " << scene_.parameters.step
       << " s is beyond the stability limit of " << integrator_->name();
   throw DivergenceError(time(), int(fastest), "total energy", why.str());

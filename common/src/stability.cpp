@@ -46,7 +46,8 @@ LinearModel linearise(const std::vector<Spring>& springs, const Vectors& r,
   model.stiffness = stiffness(free, free);
   model.damping = damping(free, free);
   model.mass.resize(Eigen::Index(free.size()));
-  for (std::size_t j = 0; j < free.size(); ++j) model.mass[Eigen::Index(j)] = mass[free[j] / 2];
+  for (std::size_t j = 0; j < free.size(); ++j)
+    model.mass[Eigen::Index(j)] = mass[free[j] / 2];
   return model;
 }
 
@@ -88,6 +89,8 @@ double explicit_euler_critical_step(const LinearModel& model) {
   return limit;
 }
 
-double verlet_critical_step(const LinearModel& model) { return 2.0 / highest_frequency(model); }
+double verlet_critical_step(const LinearModel& model) {
+  return 2.0 / highest_frequency(model);
+}
 
 }  // namespace springlab

@@ -6,7 +6,7 @@ using namespace springlab;
 Vec2 springlab::spring_force(const Vec2& r_p, const Vec2& r_q, double k, double rest_length) {
   const Vec2 d = r_p - r_q;
   const double length = d.norm();
-  if (length == 0.0) return Vec2::Zero();  // no direction to push along
+  if (length == 0.0) return Vec2::Zero();           // no direction to push along
   return -k * (length - rest_length) * d / length;  // (1.1)
 }
 

@@ -1,5 +1,6 @@
 // Task 1: one explicit Euler step. Handout section 1.
-// Declaration, with every argument's meaning and unit: common/include/springlab/task1_two_masses.hpp
+// Declaration, with every argument's meaning and unit:
+// common/include/springlab/task1_two_masses.hpp
 #include "springlab/task1_two_masses.hpp"
 
 using namespace springlab;

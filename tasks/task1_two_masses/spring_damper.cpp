@@ -1,5 +1,6 @@
 // Task 1: the spring and the damper between two particles. Handout section 1.
-// Declarations, with every argument's meaning and unit: common/include/springlab/task1_two_masses.hpp
+// Declarations, with every argument's meaning and unit:
+// common/include/springlab/task1_two_masses.hpp
 #include "springlab/task1_two_masses.hpp"
 
 using namespace springlab;

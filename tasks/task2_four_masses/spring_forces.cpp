@@ -1,5 +1,6 @@
 // Task 2: the forces of all springs and dampers. Handout section 2.
-// Declaration, with every argument's meaning and unit: common/include/springlab/task2_four_masses.hpp
+// Declaration, with every argument's meaning and unit:
+// common/include/springlab/task2_four_masses.hpp
 #include "springlab/task1_two_masses.hpp"
 #include "springlab/task2_four_masses.hpp"
 

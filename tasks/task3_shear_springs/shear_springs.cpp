@@ -1,5 +1,6 @@
 // Task 3: the shear springs of a grid. Handout section 3.
-// Declaration, with every argument's meaning and unit: common/include/springlab/task3_shear_springs.hpp
+// Declaration, with every argument's meaning and unit:
+// common/include/springlab/task3_shear_springs.hpp
 #include "springlab/task3_shear_springs.hpp"
 
 using namespace springlab;

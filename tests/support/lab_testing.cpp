@@ -11,8 +11,12 @@ std::string IsNear::describe() const {
   return out.str();
 }
 
-double TwoMassExact::omega() const { return std::sqrt(2.0 * k / mass); }
-double TwoMassExact::zeta() const { return b / std::sqrt(2.0 * k * mass); }
+double TwoMassExact::omega() const {
+  return std::sqrt(2.0 * k / mass);
+}
+double TwoMassExact::zeta() const {
+  return b / std::sqrt(2.0 * k * mass);
+}
 
 double TwoMassExact::stretch(double t) const {
   const double c = 2.0 * b / mass;

@@ -46,11 +46,11 @@ class IsNear : public Catch::MatcherBase<Vec2> {
 
 /// The lab's values (lecture appendix), as the tests use them.
 struct LabValues {
-  double h = 0.01;      ///< s
-  double mass = 0.2;    ///< kg
-  double k = 20.0;      ///< structural, N/m
-  double b = 0.1;       ///< structural, N·s/m
-  double rest = 1.0;    ///< structural ℓ0, m
+  double h = 0.01;    ///< s
+  double mass = 0.2;  ///< kg
+  double k = 20.0;    ///< structural, N/m
+  double b = 0.1;     ///< structural, N·s/m
+  double rest = 1.0;  ///< structural ℓ0, m
 };
 
 /// Two equal masses on one spring, released from rest with stretch u0 along the spring. The
@@ -58,10 +58,10 @@ struct LabValues {
 /// relative velocity is u'), an underdamped oscillator with the closed-form solution below.
 struct TwoMassExact {
   double k, b, mass, u0;
-  double omega() const;          ///< √(2k/m), rad/s
-  double zeta() const;           ///< b / √(2km)
-  double stretch(double t) const;        ///< u(t), m
-  double stretch_rate(double t) const;   ///< u'(t), m/s
+  double omega() const;                 ///< √(2k/m), rad/s
+  double zeta() const;                  ///< b / √(2km)
+  double stretch(double t) const;       ///< u(t), m
+  double stretch_rate(double t) const;  ///< u'(t), m/s
 };
 
 /// The task 1 scene with custom values: masses at (0, 0) and (1 + u0, 0), at rest.
@@ -72,7 +72,9 @@ SceneParameters two_masses(double k, double b, double mass, double u0, double h,
 SceneParameters lab_grid(int rows, int cols, bool shear, double h, const std::string& integrator);
 
 /// A run with no divergence stop: tests of instability watch the growth themselves.
-inline DivergenceLimits no_divergence_stop() { return {1e300, 1}; }
+inline DivergenceLimits no_divergence_stop() {
+  return {1e300, 1};
+}
 
 /// Steps `sim` n times, calling observe(sim) after every step.
 void run(Simulation& sim, long steps, const std::function<void(const Simulation&)>& observe);
@@ -113,6 +115,8 @@ double observed_order(double error_h, double error_half_h);
 void randomise(Particles& particles, double spread, double speed, unsigned seed);
 
 /// The index of grid particle [row, col].
-inline int at(int row, int col, int cols) { return row * cols + col; }
+inline int at(int row, int col, int cols) {
+  return row * cols + col;
+}
 
 }  // namespace springlab::testing

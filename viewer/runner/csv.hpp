@@ -10,7 +10,8 @@ namespace springlab {
 /// t, then x{i},y{i},vx{i},vy{i} for every particle i (0-based), then kinetic,potential,px,py.
 void write_csv_header(std::ostream& out, int particles);
 
-/// One row for the simulation's current state; numbers in the shortest form that reads back exactly.
+/// One row for the simulation's current state; numbers in the shortest form that reads back
+/// exactly.
 void write_csv_row(std::ostream& out, const Simulation& simulation);
 
 }  // namespace springlab

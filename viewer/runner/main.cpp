@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -32,11 +33,17 @@ struct Options {
   bool quiet = false;
 };
 
+// A number as text that reads back exactly (std::to_string would keep only six decimals).
+std::string exact_text(double x) {
+  char text[32];
+  return std::string(text, std::to_chars(text, text + sizeof text, x).ptr);
+}
+
 SceneParameters scene_from(const Options& options) {
   SceneParameters p = load_scene(options.scene);
   if (options.integrator) set_parameter(p, "integrator", *options.integrator);
-  if (options.dt) set_parameter(p, "step", std::to_string(*options.dt));
-  if (options.duration) set_parameter(p, "duration", std::to_string(*options.duration));
+  if (options.dt) set_parameter(p, "step", exact_text(*options.dt));
+  if (options.duration) set_parameter(p, "duration", exact_text(*options.duration));
   for (const std::string& assignment : options.sets) {
     const auto equals = assignment.find('=');
     if (equals == std::string::npos)
@@ -50,8 +57,8 @@ SceneParameters scene_from(const Options& options) {
 const Implementation& implementation_for(const Options& options, const SceneParameters& p) {
   if (options.impl == "reference") return reference_implementation();
   if (p.task < 1 || p.task > 4)
-    throw InvalidParameter("--impl student", "scene \"" + p.name + "\" (task = " +
-                               std::to_string(p.task) + ")",
+    throw InvalidParameter("--impl student",
+                           "scene \"" + p.name + "\" (task = " + std::to_string(p.task) + ")",
                            "a scene of task 1-4: the student's code of that task runs; in a scene "
                            "file, set task = N");
   return student_implementation(p.task);
@@ -68,8 +75,9 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
   const SceneParameters& p = sim.parameters();
   out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, "
       << sim.particles().size() << " particles, " << sim.scene().springs.size() << " springs\n"
-      << "code " << sim.implementation().name << ", integrator " << p.integrator << ", h = "
-      << p.step << " s, " << sim.steps_taken() << " steps to t = " << sim.time() << " s\n"
+      << "code " << sim.implementation().name << ", integrator " << p.integrator
+      << ", h = " << p.step << " s, " << sim.steps_taken() << " steps to t = " << sim.time()
+      << " s\n"
       << "energy " << start.total() << " J -> " << end.total() << " J (kinetic " << end.kinetic
       << ", spring " << end.potential << "); momentum (" << end.momentum.x() << ", "
       << end.momentum.y() << ") kg*m/s\n"
@@ -113,9 +121,10 @@ int main(int argc, char** argv) {
   app.add_option("--impl", options.impl, "whose code runs: the reference or the student's")
       ->check(CLI::IsMember({"reference", "student"}))
       ->capture_default_str();
-  app.add_option("--integrator", options.integrator, "explicit-euler or verlet (default: the scene's)");
-  app.add_option("--dt", options.dt, "the step h in seconds (default: the scene's, 0.01)");
-  app.add_option("--duration", options.duration, "simulated seconds (default: the scene's)");
+  app.add_option("--integrator", options.integrator,
+                 "explicit-euler or verlet (default: the scene's)");
+  app.add_option("--dt", options.dt, "the step h in seconds, the scene's `step` (default 0.01)");
+  app.add_option("--duration", options.duration, "simulated seconds, the scene's `duration`");
   app.add_option("--set", options.sets, "KEY=VALUE: change a scene parameter, e.g. structural.k=40")
       ->take_all();
   app.add_option("--every", options.every, "write every N-th step")

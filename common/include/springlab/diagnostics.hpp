@@ -24,9 +24,9 @@ double angular_momentum(const Eigen::VectorXd& mass, const Vectors& r, const Vec
 Vec2 centre_of_mass(const Eigen::VectorXd& mass, const Vectors& r);
 
 struct Diagnostics {
-  double kinetic = 0.0;     ///< J
-  double potential = 0.0;   ///< spring energy, J
-  Vec2 momentum{0.0, 0.0};  ///< kg·m/s
+  double kinetic = 0.0;           ///< J
+  double potential = 0.0;         ///< spring energy, J
+  Vec2 momentum{0.0, 0.0};        ///< kg·m/s
   double angular_momentum = 0.0;  ///< about the origin, kg·m²/s
   double total() const { return kinetic + potential; }
 };

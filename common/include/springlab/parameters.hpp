@@ -28,8 +28,8 @@ struct SceneParameters {
   int cols = 2;                 ///< grid columns (particles per row)
   double spacing = 1.0;         ///< distance between grid neighbours at the start, m
   double mass = 0.2;            ///< mass of every particle, kg
-  SpringFamilyParameters structural{true, 20.0, 0.1, 1.0};                ///< task 2
-  SpringFamilyParameters shear{false, 7.0, 0.05, std::numbers::sqrt2};    ///< task 3
+  SpringFamilyParameters structural{true, 20.0, 0.1, 1.0};              ///< task 2
+  SpringFamilyParameters shear{false, 7.0, 0.05, std::numbers::sqrt2};  ///< task 3
   int displaced_particle = 1;   ///< index of the particle moved from its grid position at t = 0
   Vec2 displacement{0.2, 0.0};  ///< how far it is moved, m
   double step = 0.01;           ///< h, the fixed time step, s
@@ -46,7 +46,8 @@ struct Range {
   bool integer = false;
 
   bool contains(double value) const;  ///< false for NaN and infinities
-  std::string describe(std::string_view key, std::string_view unit) const;  ///< "0 < mass ≤ 1e+06 kg"
+  /// As text, e.g. "0 < mass <= 1e+09 kg".
+  std::string describe(std::string_view key, std::string_view unit) const;
 };
 
 /// How for_each_field describes a field to its visitor.
@@ -86,8 +87,8 @@ void for_each_field(Params& p, Visitor&& visit) {
   visit(FieldInfo{"shear.k", "N/m", "shear stiffness", non_negative}, p.shear.k);
   visit(FieldInfo{"shear.b", "N*s/m", "shear damping", non_negative}, p.shear.b);
   visit(FieldInfo{"shear.rest_length", "m", "shear rest length", positive}, p.shear.rest_length);
-  visit(FieldInfo{"displaced_particle", "", "index of the particle moved at the start",
-                  {0, double(max_grid_side) * max_grid_side, false, false, true}},
+  const Range index{0, double(max_grid_side) * max_grid_side, false, false, true};
+  visit(FieldInfo{"displaced_particle", "", "the particle moved at the start", index},
         p.displaced_particle);
   visit(FieldInfo{"displacement.x", "m", "its displacement along x", any_length},
         p.displacement.x());

@@ -19,7 +19,8 @@ struct DivergenceLimits {
   /// store energy and dampers remove it, so a stable step never comes near; an unstable one
   /// passes it within a few hundred steps of reaching visible amplitudes.
   double energy_growth = 1e4;
-  int energy_check_interval = 8;  ///< steps between energy checks (finiteness is checked every step)
+  /// Steps between energy checks (finiteness is checked every step).
+  int energy_check_interval = 8;
 };
 
 class Simulation {

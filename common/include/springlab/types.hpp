@@ -16,12 +16,12 @@ using Vec2 = Eigen::Vector2d;
 /// One 2D vector per particle: column i belongs to particle i (row 0 is x, row 1 is y).
 using Vectors = Eigen::Matrix2Xd;
 
-/// The particles of a scene. Column i of every field, and entry i of mass and pinned, is particle i.
+/// The particles of a scene: column i of each matrix, entry i of mass and pinned, is particle i.
 struct Particles {
-  Vectors position;           ///< r_i, m
-  Vectors velocity;           ///< v_i, m/s
-  Eigen::VectorXd mass;       ///< m_i, kg (always > 0)
-  std::vector<bool> pinned;   ///< a pinned particle never moves: its acceleration is held at zero
+  Vectors position;          ///< r_i, m
+  Vectors velocity;          ///< v_i, m/s
+  Eigen::VectorXd mass;      ///< m_i, kg (always > 0)
+  std::vector<bool> pinned;  ///< a pinned particle never moves: its acceleration is held at zero
 
   int size() const { return static_cast<int>(position.cols()); }
 };
