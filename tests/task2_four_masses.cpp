@@ -213,7 +213,7 @@ TEST_CASE("Grid: explicit Euler grows at the rate the linear theory predicts",
       "the largest |1 + h lambda| over the eigenvalues lambda of the linearised grid (handout "
       "1.6)");
   const SceneParameters p = task_scene(2);
-  const LinearModel model = linear_model_at_rest(p, implementation());
+  const LinearModel model = linearise_at_rest(p, implementation());
   const double limit = explicit_euler_critical_step(model);
   REQUIRE(limit < p.step);              // the lab step is beyond it
   const int which = GENERATE(0, 1, 2);  // the lab step, just above the limit, just below it

@@ -157,7 +157,7 @@ TEST_CASE("Grid with shear springs: explicit Euler grows at the rate the linear 
           "[task3][euler][stability]") {
   INFO("the largest |1 + h lambda| over the eigenvalues of the linearised grid (handout 1.6)");
   const SceneParameters p = task_scene(3);
-  const LinearModel model = linear_model_at_rest(p, implementation());
+  const LinearModel model = linearise_at_rest(p, implementation());
   const double limit = explicit_euler_critical_step(model);
   REQUIRE(limit < p.step);
   const int which = GENERATE(0, 1, 2);  // the lab step, just above the limit, just below it

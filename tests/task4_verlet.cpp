@@ -184,7 +184,7 @@ TEST_CASE("Verlet is stable at the lab step on the 3x3 grid for 60 s",
 TEST_CASE("Verlet: stable just below 2/w_max, unstable just above", "[task4][verlet][stability]") {
   INFO("(4.5): the central-difference Verlet step is stable for h < 2/w_max whatever the damping");
   const SceneParameters p = task_scene(4);
-  const double limit = verlet_critical_step(linear_model_at_rest(p, implementation()));
+  const double limit = verlet_critical_step(linearise_at_rest(p, implementation()));
   const double factor = GENERATE(0.9, 1.1);
   Scene scene = perturbed_at_rest(p, implementation(), 1e-9, 8);
   const double start = strain_norm(scene.springs, scene.particles.position);

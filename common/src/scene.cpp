@@ -3,6 +3,8 @@
 #include "springlab/errors.hpp"
 #include "springlab/scene_file.hpp"
 
+#include <cmath>
+#include <sstream>
 #include <string>
 
 namespace springlab {
@@ -13,17 +15,27 @@ Vec2 grid_position(int row, int col, double spacing) {
 
 namespace {
 
-// Springs come from student code: refuse any that would index outside the particles, so a
-// mistake shows as a message instead of memory corruption.
-void check_springs(const std::vector<Spring>& springs, int particles, const char* builder,
-                   int task) {
-  for (const Spring& s : springs) {
-    const bool inside = s.p >= 0 && s.p < particles && s.q >= 0 && s.q < particles;
-    if (!inside || s.p == s.q)
+std::string text(double x) {
+  std::ostringstream out;
+  out << x;
+  return out.str();
+}
+
+// Springs can come from student code: refuse any that would index outside the particles or
+// make no physical sense, so a mistake shows as a message instead of memory corruption.
+void check_springs(const std::vector<Spring>& springs, int particles, const std::string& source) {
+  for (std::size_t i = 0; i < springs.size(); ++i) {
+    const Spring& s = springs[i];
+    const std::string field = source + ", spring " + std::to_string(i);
+    if (!(s.p >= 0 && s.p < particles && s.q >= 0 && s.q < particles) || s.p == s.q)
       throw InvalidParameter(
-          std::string(builder) + " (task " + std::to_string(task) + ")",
-          "a spring from " + std::to_string(s.p) + " to " + std::to_string(s.q),
+          field, "from " + std::to_string(s.p) + " to " + std::to_string(s.q),
           "both ends must be different particles from 0 to " + std::to_string(particles - 1));
+    if (!(std::isfinite(s.k) && s.k >= 0 && std::isfinite(s.b) && s.b >= 0))
+      throw InvalidParameter(field, "k = " + text(s.k) + ", b = " + text(s.b),
+                             "k >= 0 and b >= 0, both finite");
+    if (!(std::isfinite(s.rest_length) && s.rest_length > 0))
+      throw InvalidParameter(field + " rest length", text(s.rest_length), "a finite length > 0 m");
   }
 }
 
@@ -46,14 +58,32 @@ Scene build_scene(const SceneParameters& p, const Implementation& impl) {
 
   if (p.structural.enabled) {
     scene.springs = impl.structural_springs(p.rows, p.cols, p.structural);
-    check_springs(scene.springs, n, "structural_springs", 2);
+    check_springs(scene.springs, n, "structural_springs (task 2)");
   }
   if (p.shear.enabled) {
     const auto shear = impl.shear_springs(p.rows, p.cols, p.shear);
-    check_springs(shear, n, "shear_springs", 3);
+    check_springs(shear, n, "shear_springs (task 3)");
     scene.springs.insert(scene.springs.end(), shear.begin(), shear.end());
   }
   return scene;
+}
+
+void validate(const Scene& scene) {
+  validate(scene.parameters);
+  const Particles& particles = scene.particles;
+  const int n = particles.size();
+  if (particles.velocity.cols() != n || particles.mass.size() != n ||
+      int(particles.pinned.size()) != n)
+    throw InvalidParameter("particles", std::to_string(n) + " positions",
+                           "as many velocities, masses and pinned flags as positions");
+  if (!particles.position.allFinite() || !particles.velocity.allFinite())
+    throw InvalidParameter("particles", "a position or velocity that is not finite",
+                           "finite numbers");
+  for (int i = 0; i < n; ++i)
+    if (!(std::isfinite(particles.mass[i]) && particles.mass[i] > 0))
+      throw InvalidParameter("mass of particle " + std::to_string(i), text(particles.mass[i]),
+                             "a finite mass > 0 kg");
+  check_springs(scene.springs, n, "springs");
 }
 
 SceneParameters task_scene(int task) {

@@ -42,6 +42,7 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
         return acceleration(r, v);
       }),
       limits_(limits) {
+  validate(scene_);
   // A pinned particle behaves as if infinitely heavy: its acceleration is always zero.
   const Particles& particles = scene_.particles;
   inverse_mass_ = particles.mass.cwiseInverse();

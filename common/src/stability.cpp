@@ -1,5 +1,8 @@
 #include "springlab/stability.hpp"
 
+#include "springlab/errors.hpp"
+#include "springlab/scene.hpp"
+
 #include <Eigen/Eigenvalues>
 
 #include <algorithm>
@@ -91,6 +94,21 @@ double explicit_euler_critical_step(const LinearModel& model) {
 
 double verlet_critical_step(const LinearModel& model) {
   return 2.0 / highest_frequency(model);
+}
+
+double critical_step(const LinearModel& model, std::string_view integrator) {
+  if (integrator == "explicit-euler") return explicit_euler_critical_step(model);
+  if (integrator == "verlet") return verlet_critical_step(model);
+  throw InvalidParameter("integrator", "\"" + std::string(integrator) + "\"",
+                         "one of explicit-euler, verlet");
+}
+
+LinearModel linearise_at_rest(const SceneParameters& p, const Implementation& impl) {
+  SceneParameters still = p;
+  still.displacement = Vec2::Zero();
+  const Scene scene = build_scene(still, impl);
+  return linearise(scene.springs, scene.particles.position, scene.particles.mass,
+                   scene.particles.pinned);
 }
 
 }  // namespace springlab

@@ -110,14 +110,6 @@ Scene perturbed_at_rest(const SceneParameters& p, const Implementation& impl, do
   return scene;
 }
 
-LinearModel linear_model_at_rest(const SceneParameters& p, const Implementation& impl) {
-  SceneParameters still = p;
-  still.displacement = Vec2::Zero();
-  const Scene scene = build_scene(still, impl);
-  return linearise(scene.springs, scene.particles.position, scene.particles.mass,
-                   scene.particles.pinned);
-}
-
 double strain_norm(const std::vector<Spring>& springs, const Vectors& r) {
   double sum = 0.0;
   for (const Spring& s : springs)

@@ -92,9 +92,6 @@ double growth_factor_from_peaks(const std::vector<double>& samples, double skip 
 Scene perturbed_at_rest(const SceneParameters& p, const Implementation& impl, double amplitude,
                         unsigned seed);
 
-/// The linearised model of p's grid at rest (no displacement).
-LinearModel linear_model_at_rest(const SceneParameters& p, const Implementation& impl);
-
 /// sqrt(Σ (L - ℓ0)²) over the springs, m: how far the scene is deformed, blind to rigid motion.
 double strain_norm(const std::vector<Spring>& springs, const Vectors& r);
 

@@ -6,6 +6,7 @@
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/simulation.hpp"
+#include "springlab/stability.hpp"
 
 #include <CLI/CLI.hpp>
 
@@ -84,6 +85,22 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
       << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time\n";
 }
 
+// The step limit of the run's method on its scene, from the linearised equations at rest.
+void print_stability(std::ostream& out, const SceneParameters& p) {
+  if (p.rows * p.cols > 400) return;  // a dense eigen-solve: small scenes only
+  const LinearModel model = linearise_at_rest(p, reference_implementation());
+  const double limit = critical_step(model, p.integrator);
+  out << "stability: " << p.integrator << " is stable on this scene for h < " << limit << " s; ";
+  if (p.step < limit) {
+    out << "h = " << p.step << " s is within it\n";
+    return;
+  }
+  out << "h = " << p.step << " s is BEYOND it";
+  if (p.integrator == "explicit-euler")
+    out << ": small motions grow x" << explicit_euler_growth_factor(model, p.step) << " a step";
+  out << '\n';
+}
+
 int run(const Options& options) {
   const SceneParameters p = scene_from(options);
   Simulation sim(p, implementation_for(options, p));
@@ -107,7 +124,10 @@ int run(const Options& options) {
     if (csv && (n % options.every == 0 || n == steps)) write_csv_row(*csv, sim);
   }
   const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - clock_start;
-  if (!options.quiet) print_summary(report, sim, start, wall.count());
+  if (!options.quiet) {
+    print_summary(report, sim, start, wall.count());
+    print_stability(report, p);
+  }
   return done;
 }
 

@@ -25,6 +25,11 @@ Vec2 grid_position(int row, int col, double spacing);
 /// nothing it leaves out).
 Scene build_scene(const SceneParameters& p, const Implementation& impl);
 
+/// Checks a scene built or changed elsewhere: its parameters (validate), matching particle
+/// arrays, finite positions and velocities, positive masses, springs between two different
+/// existing particles with k ≥ 0, b ≥ 0 and ℓ0 > 0. Throws InvalidParameter naming the field.
+void validate(const Scene& scene);
+
 /// The lab's scene for task 1–4 (handout sections 1–4). Throws InvalidParameter otherwise.
 SceneParameters task_scene(int task);
 

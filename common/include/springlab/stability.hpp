@@ -3,9 +3,12 @@
 // eigen-solves: meant for small scenes (up to a few hundred particles).
 #pragma once
 
+#include "springlab/implementation.hpp"
+#include "springlab/parameters.hpp"
 #include "springlab/types.hpp"
 
 #include <Eigen/Core>
+#include <string_view>
 #include <vector>
 
 namespace springlab {
@@ -36,5 +39,11 @@ double explicit_euler_critical_step(const LinearModel& model);
 
 /// 2/ω_max, the limit of Störmer–Verlet with a central-difference velocity (equation (4.5)), s.
 double verlet_critical_step(const LinearModel& model);
+
+/// The critical step of the integrator `name` (integrator.hpp) for this model, s.
+double critical_step(const LinearModel& model, std::string_view integrator);
+
+/// The model of scene p at rest (no displacement), its springs built by impl.
+LinearModel linearise_at_rest(const SceneParameters& p, const Implementation& impl);
 
 }  // namespace springlab
