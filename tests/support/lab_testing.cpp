@@ -1,5 +1,7 @@
 #include "lab_testing.hpp"
 
+#include "springlab/diagnostics.hpp"
+
 #include <cmath>
 
 namespace springlab::testing {
@@ -97,10 +99,6 @@ void randomise(Particles& particles, double spread, double speed, unsigned seed)
   }
 }
 
-}  // namespace springlab::testing
-
-namespace springlab::testing {
-
 Scene perturbed_at_rest(const SceneParameters& p, const Implementation& impl, double amplitude,
                         unsigned seed) {
   SceneParameters still = p;
@@ -133,6 +131,32 @@ std::vector<double> strain_history(Scene scene, const Implementation& impl, long
 
 double measured_growth_factor(Scene scene, const Implementation& impl, long steps) {
   return growth_factor_from_peaks(strain_history(std::move(scene), impl, steps), 0.5);
+}
+
+Vectors energy_force(const std::vector<Spring>& springs, const Vectors& r, double d) {
+  Vectors force(2, r.cols());
+  for (Eigen::Index i = 0; i < r.cols(); ++i)
+    for (int axis = 0; axis < 2; ++axis) {
+      Vectors plus = r, minus = r;
+      plus(axis, i) += d;
+      minus(axis, i) -= d;
+      force(axis, i) = -(spring_energy(springs, plus) - spring_energy(springs, minus)) / (2 * d);
+    }
+  return force;
+}
+
+bool carries(const Spring& spring, SpringFamily family, const SpringFamilyParameters& values) {
+  return spring.family == family && spring.k == values.k && spring.b == values.b &&
+         spring.rest_length == values.rest_length;
+}
+
+double momentum_drift(Simulation& sim, long steps) {
+  const Vec2 start = sim.diagnostics().momentum;
+  double worst = 0.0;
+  run(sim, steps, [&](const Simulation& s) {
+    worst = std::max(worst, (s.diagnostics().momentum - start).norm());
+  });
+  return worst;
 }
 
 }  // namespace springlab::testing

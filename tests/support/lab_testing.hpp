@@ -111,6 +111,16 @@ double observed_order(double error_h, double error_half_h);
 /// velocities up to `speed` m/s, from a fixed seed.
 void randomise(Particles& particles, double spread, double speed, unsigned seed);
 
+/// -dE/dr_i for every particle by central differences of spring_energy (step d, m): the force
+/// the springs must exert, by the definition of a potential, N.
+Vectors energy_force(const std::vector<Spring>& springs, const Vectors& r, double d = 1e-6);
+
+/// True when the spring has this family and exactly the family's k, b and rest length.
+bool carries(const Spring& spring, SpringFamily family, const SpringFamilyParameters& values);
+
+/// The largest |P(t) - P(0)| of total linear momentum while stepping sim `steps` times, kg·m/s.
+double momentum_drift(Simulation& sim, long steps);
+
 /// The index of grid particle [row, col].
 inline int at(int row, int col, int cols) {
   return row * cols + col;
