@@ -6,6 +6,12 @@
 
 namespace springlab::testing {
 
+namespace {
+// Catch2 prints doubles in fixed notation with 10 decimals, which shows the tolerances of these
+// tests (1e-12) as 0; 15 decimals show them, and Catch drops the trailing zeros.
+const bool precise_doubles = (Catch::StringMaker<double>::precision = 15, true);
+}  // namespace
+
 std::string IsNear::describe() const {
   std::ostringstream out;
   out.precision(12);
