@@ -188,7 +188,8 @@ TEST_CASE("Scenes: a scene changed by hand is checked before it runs", "[core][s
   const Scene good = build_scene(task_scene(2), implementation());
   Scene bad = good;
   bad.particles.velocity(1, 2) = std::numeric_limits<double>::quiet_NaN();
-  CHECK_THAT(rejection([&] { Simulation sim(bad, implementation()); }), Contains("not finite"));
+  CHECK_THAT(rejection([&] { Simulation sim(bad, implementation()); }),
+             Contains("velocity.y of particle 2 = nan"));
   bad = good;
   bad.particles.mass[3] = 0.0;
   CHECK_THAT(rejection([&] { Simulation sim(bad, implementation()); }),

@@ -99,6 +99,9 @@ void validate(const SceneParameters& p) {
     throw InvalidParameter(
         "displaced_particle", std::to_string(p.displaced_particle),
         "0 <= displaced_particle <= " + number(particles - 1) + " (rows x cols - 1)");
+  if (p.duration / p.step > max_steps)
+    throw InvalidParameter("duration / step", number(p.duration) + " s / " + number(p.step) + " s",
+                           "at most " + number(max_steps) + " steps in one run");
   if (!is_integrator_name(p.integrator)) {
     std::string names;
     for (const auto& name : integrator_names())

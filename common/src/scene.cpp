@@ -68,6 +68,16 @@ Scene build_scene(const SceneParameters& p, const Implementation& impl) {
   return scene;
 }
 
+std::pair<int, std::string> first_non_finite(const Particles& particles) {
+  const char* axis[] = {"x", "y"};
+  for (int i = 0; i < particles.size(); ++i)
+    for (int d = 0; d < 2; ++d) {
+      if (!std::isfinite(particles.position(d, i))) return {i, std::string("position.") + axis[d]};
+      if (!std::isfinite(particles.velocity(d, i))) return {i, std::string("velocity.") + axis[d]};
+    }
+  return {-1, ""};
+}
+
 void validate(const Scene& scene) {
   validate(scene.parameters);
   const Particles& particles = scene.particles;
@@ -76,9 +86,11 @@ void validate(const Scene& scene) {
       int(particles.pinned.size()) != n)
     throw InvalidParameter("particles", std::to_string(n) + " positions",
                            "as many velocities, masses and pinned flags as positions");
-  if (!particles.position.allFinite() || !particles.velocity.allFinite())
-    throw InvalidParameter("particles", "a position or velocity that is not finite",
-                           "finite numbers");
+  if (const auto [i, quantity] = first_non_finite(particles); i >= 0)
+    throw InvalidParameter(quantity + " of particle " + std::to_string(i),
+                           text(quantity[0] == 'p' ? particles.position(quantity.back() - 'x', i)
+                                                   : particles.velocity(quantity.back() - 'x', i)),
+                           "a finite number");
   for (int i = 0; i < n; ++i)
     if (!(std::isfinite(particles.mass[i]) && particles.mass[i] > 0))
       throw InvalidParameter("mass of particle " + std::to_string(i), text(particles.mass[i]),

@@ -17,17 +17,6 @@ double moderate_energy(const std::vector<Spring>& springs) {
   return energy;
 }
 
-// The first non-finite entry, as (particle, quantity), or (-1, "") when all are finite.
-std::pair<int, std::string> first_non_finite(const Particles& particles) {
-  const char* axis[] = {"x", "y"};
-  for (int i = 0; i < particles.size(); ++i)
-    for (int d = 0; d < 2; ++d) {
-      if (!std::isfinite(particles.position(d, i))) return {i, std::string("position.") + axis[d]};
-      if (!std::isfinite(particles.velocity(d, i))) return {i, std::string("velocity.") + axis[d]};
-    }
-  return {-1, ""};
-}
-
 }  // namespace
 
 Simulation::Simulation(const SceneParameters& p, const Implementation& impl,
@@ -69,8 +58,17 @@ void Simulation::step() {
     ++steps_;
     check_divergence(steps_ % limits_.energy_check_interval == 0);
   } catch (const StepFailed& failure) {
-    throw DivergenceError(time(), -1, std::string(integrator_->name()) + " step", failure.what());
+    // Name the fastest particle: where a step that cannot settle is most likely to go wrong.
+    Eigen::Index fastest = 0;
+    if (particles.velocity.allFinite())
+      particles.velocity.colwise().squaredNorm().maxCoeff(&fastest);
+    throw DivergenceError(time(), int(fastest), "the " + std::string(integrator_->name()) + " step",
+                          failure.what());
   }
+}
+
+void Simulation::check() const {
+  check_divergence(true);
 }
 
 void Simulation::advance(long steps) {
@@ -80,12 +78,13 @@ void Simulation::advance(long steps) {
 
 void Simulation::check_divergence(bool check_energy) const {
   const Particles& particles = scene_.particles;
-  const bool finite = particles.position.allFinite() && particles.velocity.allFinite();
-  if (const auto [particle, quantity] = first_non_finite(particles); !finite)
-    throw DivergenceError(
-        time(), particle, quantity,
-        "it is no longer a finite number; the step h = " + std::to_string(scene_.parameters.step) +
-            " s is probably beyond the method's stability limit");
+  if (!particles.position.allFinite() || !particles.velocity.allFinite()) {
+    const auto [particle, quantity] = first_non_finite(particles);
+    std::ostringstream why;
+    why << "it is no longer a finite number; the step h = " << scene_.parameters.step
+        << " s is probably beyond the stability limit of " << integrator_->name();
+    throw DivergenceError(time(), particle, quantity, why.str());
+  }
   if (!check_energy) return;
   const double energy = diagnostics().total();
   if (energy <= limits_.energy_growth * reference_energy_) return;

@@ -19,9 +19,9 @@ void springlab::verlet_step(const AccelerationFunction& acceleration, double h, 
     v_now = v_central;
     if (settled) break;
     if (iteration == verlet_max_iterations)
-      throw StepFailed("verlet_step: the velocity of (4.1)-(4.2) did not settle in " +
-                       std::to_string(verlet_max_iterations) +
-                       " iterations; h is too large for the dampers");
+      throw StepFailed(
+          "(4.1)-(4.2) did not settle in " + std::to_string(verlet_max_iterations) +
+          " iterations: the dampers are too strong for this h (h*c/2 near or above 1)");
   }
   v = (3.0 * r_next - 4.0 * r + r_previous) / (2.0 * h);  // (4.4)
   history.previous_position = r;

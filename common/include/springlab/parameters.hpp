@@ -5,6 +5,7 @@
 
 #include "springlab/types.hpp"
 
+#include <limits>
 #include <numbers>
 #include <string>
 #include <string_view>
@@ -59,6 +60,7 @@ struct FieldInfo {
 };
 
 inline constexpr int max_grid_side = 100000;  ///< particles along one side of a grid
+inline constexpr double max_steps = 1e10;     ///< steps in one run (duration / step)
 
 /// Calls visit(info, value) for every field of p, where value is an int&, double&, bool& or
 /// std::string& (const when p is const). The one list of every scene parameter.
@@ -87,7 +89,7 @@ void for_each_field(Params& p, Visitor&& visit) {
   visit(FieldInfo{"shear.k", "N/m", "shear stiffness", non_negative}, p.shear.k);
   visit(FieldInfo{"shear.b", "N*s/m", "shear damping", non_negative}, p.shear.b);
   visit(FieldInfo{"shear.rest_length", "m", "shear rest length", positive}, p.shear.rest_length);
-  const Range index{0, double(max_grid_side) * max_grid_side, false, false, true};
+  const Range index{0, double(std::numeric_limits<int>::max()), false, false, true};
   visit(FieldInfo{"displaced_particle", "", "the particle moved at the start", index},
         p.displaced_particle);
   visit(FieldInfo{"displacement.x", "m", "its displacement along x", any_length},
@@ -100,7 +102,8 @@ void for_each_field(Params& p, Visitor&& visit) {
 }
 
 /// Checks every field against its range and the fields against each other (rows·cols ≥ 2, the
-/// grid fits in memory, the displaced particle exists, the integrator is known). Throws
+/// grid fits in memory, the displaced particle exists, duration/step ≤ max_steps, the
+/// integrator is known). Throws
 /// InvalidParameter naming the field, the value and the allowed range.
 void validate(const SceneParameters& p);
 

@@ -7,6 +7,7 @@
 #include "springlab/types.hpp"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace springlab {
@@ -24,6 +25,10 @@ Vec2 grid_position(int row, int col, double spacing);
 /// particle moved; springs from impl's builders for the enabled families only (a scene pays for
 /// nothing it leaves out).
 Scene build_scene(const SceneParameters& p, const Implementation& impl);
+
+/// The first particle whose position or velocity is not a finite number, with the component
+/// ("position.x", …, "velocity.y"); {-1, ""} when every value is finite.
+std::pair<int, std::string> first_non_finite(const Particles& particles);
 
 /// Checks a scene built or changed elsewhere: its parameters (validate), matching particle
 /// arrays, finite positions and velocities, positive masses, springs between two different

@@ -36,6 +36,9 @@ class Simulation {
   /// the state stops being finite or the energy runs away.
   void step();
   void advance(long steps);
+  /// The full divergence check (finiteness and energy) on the current state; step() checks the
+  /// energy only every energy_check_interval steps, so call this at the end of a run.
+  void check() const;
 
   /// The model the integrator sees: a_i = F_i / m_i with the spring and damper forces of every
   /// spring (impl.accumulate_spring_forces); zero for pinned particles.

@@ -22,7 +22,8 @@ SPRINGLAB_TASK_API_BEGIN
 ///   (4.4)  v_{n+1} = (3 r_{n+1} - 4 r_n + r_{n-1}) / (2h),
 /// and history.previous_position holds r_n for the next step.
 /// Order 2, also with damping, because (4.2) is central; stable for h < 2/ω_max (equation (4.5))
-/// whatever the damping, where ω_max is the scene's highest angular frequency.
+/// whatever the damping, where ω_max is the scene's highest angular frequency, as long as the
+/// repetition settles (h·c/2 below about 0.76, see verlet_max_iterations).
 /// @param acceleration  the physical model, a = F/m per particle, m/s²
 /// @param h             the step, s (the same for every step of one run)
 /// @param r             positions r_n, m; replaced by r_{n+1}
