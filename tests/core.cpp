@@ -222,16 +222,18 @@ TEST_CASE("Diagnostics: energies and momenta of a known motion", "[core][diagnos
 }
 
 TEST_CASE("Stability theory: two masses match the closed forms", "[core][stability]") {
-  const LabValues lab;
+  const SceneParameters lab;  // the lab's values
   const Scene scene =
-      build_scene(two_masses(lab.k, lab.b, lab.mass, 0.0, lab.h, "verlet"), implementation());
+      build_scene(two_masses(lab.structural.k, lab.structural.b, lab.mass, 0.0, lab.step, "verlet"),
+                  implementation());
   const LinearModel model = linearise(scene.springs, scene.particles.position, scene.particles.mass,
                                       scene.particles.pinned);
-  const TwoMassExact exact{lab.k, lab.b, lab.mass, 0.0};
+  const TwoMassExact exact{lab.structural.k, lab.structural.b, lab.mass, 0.0};
   CHECK_THAT(highest_frequency(model), WithinRel(exact.omega(), 1e-12));
-  CHECK_THAT(explicit_euler_critical_step(model), WithinRel(lab.b / lab.k, 1e-9));
+  CHECK_THAT(explicit_euler_critical_step(model),
+             WithinRel(lab.structural.b / lab.structural.k, 1e-9));
   CHECK_THAT(verlet_critical_step(model), WithinRel(2.0 / exact.omega(), 1e-12));
-  const double w = exact.omega(), z = exact.zeta(), h = lab.h;
+  const double w = exact.omega(), z = exact.zeta(), h = lab.step;
   CHECK_THAT(explicit_euler_growth_factor(model, h),
              WithinRel(std::sqrt(1 - 2 * z * w * h + w * w * h * h), 1e-9));
 }

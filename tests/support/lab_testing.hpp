@@ -44,15 +44,6 @@ class IsNear : public Catch::MatcherBase<Vec2> {
   double tolerance_;
 };
 
-/// The lab's values (lecture appendix), as the tests use them.
-struct LabValues {
-  double h = 0.01;    ///< s
-  double mass = 0.2;  ///< kg
-  double k = 20.0;    ///< structural, N/m
-  double b = 0.1;     ///< structural, N·s/m
-  double rest = 1.0;  ///< structural ℓ0, m
-};
-
 /// Two equal masses on one spring, released from rest with stretch u0 along the spring. The
 /// stretch u = L - ℓ0 obeys u'' = -(2k/m) u - (2b/m) u' (each mass feels the spring and the
 /// relative velocity is u'), an underdamped oscillator with the closed-form solution below.
