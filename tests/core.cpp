@@ -134,7 +134,21 @@ TEST_CASE("Scene files: values, and errors with the file, the line and the key",
     file << "rows = = 3\n";
   }
   CHECK_THAT(rejection([&] { load_scene_file(path); }), Contains(path + ":1"));
+  {
+    std::ofstream file(path);
+    file << "rows = \"3\"\n";
+  }
+  CHECK_THAT(rejection([&] { load_scene_file(path); }),
+             Contains(path + ":1: rows = '3' (a string): expected a whole number"));
+  {
+    std::ofstream file(path);
+    file << "task = 2\nrows = 2\ncols = 2\ndisplaced_particle = 7\n";
+  }
+  CHECK_THAT(rejection([&] { load_scene_file(path); }),
+             Contains(path + ":4: displaced_particle = 7"));
   CHECK_THAT(rejection([&] { load_scene("no-such-scene.toml"); }), Contains("task1, task2"));
+  CHECK_THAT(rejection([&] { load_scene(std::filesystem::temp_directory_path().string()); }),
+             Contains("a readable scene file"));
 }
 
 TEST_CASE("Scenes: only the families a scene asks for are built", "[core][scene]") {

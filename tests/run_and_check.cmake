@@ -1,7 +1,12 @@
 # Runs a command and checks its exit code, its output (stdout and stderr together) and,
-# optionally, its number of output lines: a front end's behaviour as a user sees it.
-# cmake -DCOMMAND="exe|arg|..." -DEXIT=2 [-DMATCH=regex] [-DLINES=n] -P run_and_check.cmake
+# optionally, its number of output lines and a file it writes: a front end's behaviour as a user
+# sees it.
+# cmake -DCOMMAND="exe|arg|..." -DEXIT=2 [-DMATCH=regex] [-DLINES=n]
+#       [-DFILE=path -DFILE_MATCH=regex] -P run_and_check.cmake
 string(REPLACE "|" ";" COMMAND "${COMMAND}")
+if(DEFINED FILE)
+  file(REMOVE "${FILE}")
+endif()
 execute_process(COMMAND ${COMMAND} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
 set(all "${out}${err}")
 if(NOT code STREQUAL "${EXIT}")
@@ -15,5 +20,14 @@ if(DEFINED LINES)
   list(LENGTH newlines count)
   if(NOT count EQUAL LINES)
     message(FATAL_ERROR "${count} lines on standard output, expected ${LINES}:\n${out}")
+  endif()
+endif()
+if(DEFINED FILE)
+  if(NOT EXISTS "${FILE}")
+    message(FATAL_ERROR "${FILE} was not written:\n${all}")
+  endif()
+  file(READ "${FILE}" written)
+  if(NOT written MATCHES "${FILE_MATCH}")
+    message(FATAL_ERROR "${FILE} does not match '${FILE_MATCH}':\n${written}")
   endif()
 endif()

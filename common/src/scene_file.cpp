@@ -4,8 +4,9 @@
 
 #include <toml++/toml.h>
 
-#include <fstream>
+#include <filesystem>
 #include <sstream>
+#include <type_traits>
 
 namespace springlab {
 namespace {
@@ -14,37 +15,83 @@ std::string place(const std::string& path, const toml::source_region& where) {
   return path + ":" + std::to_string(where.begin.line);
 }
 
-// TOML values as the text set_parameter reads; tables and arrays are not scene values.
-bool value_text(const toml::node& node, std::string& text) {
-  if (auto s = node.as_string()) return text = s->get(), true;
-  if (auto b = node.as_boolean()) return text = b->get() ? "true" : "false", true;
-  if (auto i = node.as_integer()) return text = std::to_string(i->get()), true;
-  if (auto f = node.as_floating_point()) {
-    std::ostringstream out;
-    out.precision(17);
-    out << f->get();
-    return text = out.str(), true;
+std::string kind_of(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "a whole number";
+    case toml::node_type::floating_point:
+      return "a number";
+    case toml::node_type::boolean:
+      return "true/false";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::table:
+      return "a table";
+    default:
+      return "a date or time";
+  }
+}
+
+// The value as the file writes it, and what kind of value that is.
+std::string as_written(const toml::node& node) {
+  std::ostringstream out;
+  node.visit([&](const auto& value) { out << value; });
+  return out.str() + " (" + kind_of(node) + ")";
+}
+
+// The node's value as set_parameter reads it, if its TOML type fits the field's C++ type:
+// strings for names, booleans for switches, whole numbers for counts, any number for reals.
+template <class T>
+bool text_for(const toml::node& node, std::string& text) {
+  if constexpr (std::is_same_v<T, std::string>) {
+    if (auto s = node.as_string()) return text = s->get(), true;
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (auto b = node.as_boolean()) return text = b->get() ? "true" : "false", true;
+  } else {
+    if (auto i = node.as_integer()) return text = std::to_string(i->get()), true;
+    if constexpr (std::is_floating_point_v<T>) {
+      if (auto f = node.as_floating_point()) {
+        std::ostringstream out;
+        out.precision(17);
+        out << f->get();
+        return text = out.str(), true;
+      }
+    }
   }
   return false;
 }
 
-void apply_table(const std::string& path, const toml::table& table, const std::string& prefix,
-                 SceneParameters& p) {
+template <class T>
+const char* expected_kind() {
+  if constexpr (std::is_same_v<T, std::string>) return "a string in quotes";
+  if constexpr (std::is_same_v<T, bool>) return "true or false";
+  if constexpr (std::is_integral_v<T>) return "a whole number";
+  return "a number";
+}
+
+void apply(const std::string& path, const toml::table& table, const std::string& prefix,
+           SceneParameters& p) {
   for (const auto& [name, node] : table) {
     const std::string key = prefix + std::string(name.str());
     if (const toml::table* inner = node.as_table()) {
-      apply_table(path, *inner, key + ".", p);
+      apply(path, *inner, key + ".", p);
       continue;
     }
+    const std::string where = place(path, node.source()) + ": ";
     std::string text;
-    if (!value_text(node, text))
-      throw InvalidParameter(place(path, node.source()) + ": " + key, "an array",
-                             "a number, true/false or a string");
+    const char* wanted = nullptr;  // set when the key is known but the TOML type does not fit
+    for_each_field(p, [&](const FieldInfo& info, auto& value) {
+      using T = std::decay_t<decltype(value)>;
+      if (info.key == key && !text_for<T>(node, text)) wanted = expected_kind<T>();
+    });
+    if (wanted)
+      throw InvalidParameter(where + key, as_written(node), std::string("expected ") + wanted);
     try {
-      set_parameter(p, key, text);
+      set_parameter(p, key, text);  // also names an unknown key and the nearest known one
     } catch (const InvalidParameter& error) {
-      throw InvalidParameter(place(path, node.source()) + ": " + error.field(), error.value(),
-                             error.allowed());
+      throw InvalidParameter(where + error.field(), error.value(), error.allowed());
     }
   }
 }
@@ -52,7 +99,7 @@ void apply_table(const std::string& path, const toml::table& table, const std::s
 }  // namespace
 
 SceneParameters load_scene_file(const std::string& path) {
-  if (!std::ifstream(path))
+  if (!std::filesystem::is_regular_file(path))
     throw InvalidParameter("scene", "\"" + path + "\"",
                            "task1, task2, task3, task4 or the path of a readable scene file");
   toml::table table;
@@ -64,7 +111,14 @@ SceneParameters load_scene_file(const std::string& path) {
   }
   SceneParameters p;
   p.name = path;
-  apply_table(path, table, "", p);
+  apply(path, table, "", p);
+  try {
+    validate(p);  // the checks across fields, e.g. a displaced particle outside the grid
+  } catch (const InvalidParameter& error) {
+    const toml::node* node = table.at_path(error.field()).node();
+    const std::string where = node ? place(path, node->source()) : path;
+    throw InvalidParameter(where + ": " + error.field(), error.value(), error.allowed());
+  }
   return p;
 }
 

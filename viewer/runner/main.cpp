@@ -1,5 +1,6 @@
 // springlab-run: the headless front end. Runs a scene with the reference or the student's code
-// and writes the state as CSV. Exit codes: 0 done, 2 bad input, 3 diverged, 4 task not written yet.
+// and writes the state as CSV. Exit codes: 0 done, 1 the code under test failed in a way the kit
+// does not know, 2 bad input, 3 diverged, 4 task not written yet.
 #include "runner/csv.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
@@ -14,14 +15,16 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <optional>
+#include <sstream>
 
 namespace {
 
 using namespace springlab;
 
-enum Exit { done = 0, bad_input = 2, diverged = 3, not_written = 4 };
+enum Exit { done = 0, failed = 1, bad_input = 2, diverged = 3, not_written = 4 };
 
 struct Options {
   std::string scene = "task1";
@@ -65,8 +68,31 @@ const Implementation& implementation_for(const Options& options, const ScenePara
   return student_implementation(p.task);
 }
 
+// Every key --set takes, with its unit, meaning and default (the lab's values).
+std::string parameter_list() {
+  std::ostringstream out;
+  out << "Keys for --set KEY=VALUE and scene files (defaults: the lab's values, scene task1):\n";
+  const SceneParameters defaults;
+  for_each_field(defaults, [&](const FieldInfo& info, const auto& value) {
+    std::ostringstream key;
+    key << info.key << (info.unit.empty() ? "" : " [") << info.unit
+        << (info.unit.empty() ? "" : "]");
+    out << "  " << std::left << std::setw(32) << key.str() << info.meaning << " (" << std::boolalpha
+        << value << ")\n";
+  });
+  return out.str();
+}
+
+std::string code_name(const Implementation& impl) {
+  if (impl.student_task == 0) return "reference";
+  const std::string task = std::to_string(impl.student_task);
+  return "the student's task " + task + " (tasks/task" + task +
+         "_*) with the reference for the rest";
+}
+
 long steps_for(const SceneParameters& p) {
-  // Whole steps only: round down when duration/h is a whole number up to rounding.
+  // Whole steps: the run ends at the first step at or after `duration` (validate() has capped
+  // duration/step, so the count fits).
   return long(std::ceil(p.duration / p.step - 1e-9));
 }
 
@@ -76,7 +102,7 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
   const SceneParameters& p = sim.parameters();
   out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, "
       << sim.particles().size() << " particles, " << sim.scene().springs.size() << " springs\n"
-      << "code " << sim.implementation().name << ", integrator " << p.integrator
+      << "code " << code_name(sim.implementation()) << ", integrator " << p.integrator
       << ", h = " << p.step << " s, " << sim.steps_taken() << " steps to t = " << sim.time()
       << " s\n"
       << "energy " << start.total() << " J -> " << end.total() << " J (kinetic " << end.kinetic
@@ -90,6 +116,15 @@ void print_stability(std::ostream& out, const SceneParameters& p) {
   if (p.rows * p.cols > 400) return;  // a dense eigen-solve: small scenes only
   const LinearModel model = linearise_at_rest(p, reference_implementation());
   const double limit = critical_step(model, p.integrator);
+  if (limit == 0.0) {
+    out << "stability: " << p.integrator << " is unstable on this scene at every h (a mode has "
+        << "no damping)\n";
+    return;
+  }
+  if (std::isinf(limit)) {
+    out << "stability: " << p.integrator << " is stable on this scene at every h\n";
+    return;
+  }
   out << "stability: " << p.integrator << " is stable on this scene for h < " << limit << " s; ";
   if (p.step < limit) {
     out << "h = " << p.step << " s is within it\n";
@@ -102,6 +137,8 @@ void print_stability(std::ostream& out, const SceneParameters& p) {
 }
 
 int run(const Options& options) {
+  if (options.every < 1)
+    throw InvalidParameter("--every", std::to_string(options.every), "a whole number >= 1");
   const SceneParameters p = scene_from(options);
   Simulation sim(p, implementation_for(options, p));
   std::ofstream file;
@@ -123,6 +160,7 @@ int run(const Options& options) {
     sim.step();
     if (csv && (n % options.every == 0 || n == steps)) write_csv_row(*csv, sim);
   }
+  sim.check();  // the energy is watched every few steps only: look once more at the end
   const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - clock_start;
   if (!options.quiet) {
     print_summary(report, sim, start, wall.count());
@@ -147,11 +185,10 @@ int main(int argc, char** argv) {
   app.add_option("--duration", options.duration, "simulated seconds, the scene's `duration`");
   app.add_option("--set", options.sets, "KEY=VALUE: change a scene parameter, e.g. structural.k=40")
       ->take_all();
-  app.add_option("--every", options.every, "write every N-th step")
-      ->check(CLI::Range(1L, 1000000000L))
-      ->capture_default_str();
+  app.add_option("--every", options.every, "write every N-th step (N >= 1)")->capture_default_str();
   app.add_option("--csv", options.csv, "FILE, or - for standard output (default: no CSV)");
   app.add_flag("--quiet", options.quiet, "no summary");
+  app.footer(parameter_list());
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {
@@ -169,5 +206,8 @@ int main(int argc, char** argv) {
   } catch (const NotImplemented& error) {
     std::cerr << "springlab-run: " << error.what() << '\n';
     return not_written;
+  } catch (const std::exception& error) {
+    std::cerr << "springlab-run: the run stopped on an unexpected error: " << error.what() << '\n';
+    return failed;
   }
 }
