@@ -1,5 +1,6 @@
-// A Catch2 reporter for students (`./lab test taskN --student`): one line per test, and for a
-// failing test only its first failure, with the equation it checks and the values involved.
+// A Catch2 reporter for students (`./lab test taskN --student`): one line per test ending in pass
+// or FAIL, and for a failing test only its first failure, with the equation it checks and the
+// values involved.
 // Linked into every test program; choose it with `-r springlab`.
 #define CATCH_CONFIG_EXTERNAL_INTERFACES  // the reporter base classes
 #include <catch2/catch.hpp>
@@ -40,18 +41,21 @@ class FeedbackReporter : public Catch::StreamingReporterBase<FeedbackReporter> {
     return true;
   }
 
+  // The name goes out before the test runs, so that a test that crashes is still named.
   void testCaseStarting(const Catch::TestCaseInfo& info) override {
     StreamingReporterBase::testCaseStarting(info);
     first_failure_.clear();
+    stream << "  " << info.name << " ... " << std::flush;
   }
 
   void testCaseEnded(const Catch::TestCaseStats& stats) override {
     const bool passed = stats.totals.assertions.failed == 0 && stats.totals.assertions.passed > 0;
     ++(passed ? passed_ : failed_);
-    stream << (passed ? "  pass  " : "  FAIL  ") << stats.testInfo.name << '\n';
+    stream << (passed ? "pass" : "FAIL") << '\n';
     if (!passed)
       stream << "        " << (first_failure_.empty() ? "no assertion ran" : first_failure_)
              << '\n';
+    stream.flush();  // a crash in the next test must not swallow this one's line
     StreamingReporterBase::testCaseEnded(stats);
   }
 
