@@ -12,7 +12,7 @@
 namespace springlab {
 
 struct Implementation {
-  std::string_view name;  ///< "reference", or "student task N"
+  std::string_view name;  ///< its namespace: "reference" or "student_taskN"
   int student_task = 0;   ///< N for "the student's task N", 0 for the reference
 
   // Task 1 (task1_two_masses.hpp)
