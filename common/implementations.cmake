@@ -8,7 +8,7 @@
 file(GLOB SPRINGLAB_SOLUTION_FILES CONFIGURE_DEPENDS
      RELATIVE "${PROJECT_SOURCE_DIR}/solutions" "${PROJECT_SOURCE_DIR}/solutions/task*/*.cpp")
 list(SORT SPRINGLAB_SOLUTION_FILES)
-set(SPRINGLAB_TASKS 1 2 3 4)
+set(SPRINGLAB_TASKS 1 2 3 4 5)
 
 # The task number of a path such as task2_four_masses/spring_forces.cpp.
 function(springlab_task_of path out)
@@ -77,4 +77,4 @@ endforeach()
 add_library(springlab_implementations STATIC "${PROJECT_SOURCE_DIR}/common/impl/registry.cpp")
 target_link_libraries(springlab_implementations PUBLIC springlab_core springlab_reference
                       springlab_student_task1 springlab_student_task2 springlab_student_task3
-                      springlab_student_task4 PRIVATE springlab_warnings)
+                      springlab_student_task4 springlab_student_task5 PRIVATE springlab_warnings)

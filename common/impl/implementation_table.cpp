@@ -4,6 +4,7 @@
 #include "springlab/task2_four_masses.hpp"
 #include "springlab/task3_shear_springs.hpp"
 #include "springlab/task4_verlet.hpp"
+#include "springlab/task5_fabric.hpp"
 #include "springlab/this_implementation.hpp"
 
 #ifndef SPRINGLAB_STUDENT_TASK
@@ -24,6 +25,10 @@ const springlab::Implementation& springlab::implementation() {
       .accumulate_spring_forces = &accumulate_spring_forces,
       .shear_springs = &shear_springs,
       .verlet_step = &verlet_step,
+      .bend_springs = &bend_springs,
+      .add_gravity = &add_gravity,
+      .add_wind = &add_wind,
+      .hold_pinned = &hold_pinned,
   };
   return table;
 }

@@ -20,6 +20,9 @@ const Implementation& implementation();
 namespace student_task4 {
 const Implementation& implementation();
 }
+namespace student_task5 {
+const Implementation& implementation();
+}
 
 const Implementation& reference_implementation() {
   return reference::implementation();
@@ -35,8 +38,10 @@ const Implementation& student_implementation(int task) {
       return student_task3::implementation();
     case 4:
       return student_task4::implementation();
+    case 5:
+      return student_task5::implementation();
   }
-  throw InvalidParameter("task", std::to_string(task), "1, 2, 3 or 4");
+  throw InvalidParameter("task", std::to_string(task), "1, 2, 3, 4 or 5");
 }
 
 }  // namespace springlab

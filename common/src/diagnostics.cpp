@@ -33,6 +33,18 @@ Vec2 centre_of_mass(const Eigen::VectorXd& mass, const Vectors& r) {
   return r * mass / mass.sum();
 }
 
+double gravitational_energy(const Eigen::VectorXd& mass, const Vectors& r, const Vectors& start,
+                            const Vec2& g) {
+  return -((g.transpose() * (r - start)) * mass).value();
+}
+
+Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs, const Vec2& g,
+                     const Vectors& start) {
+  Diagnostics d = diagnose(particles, springs);
+  d.gravitational = gravitational_energy(particles.mass, particles.position, start, g);
+  return d;
+}
+
 Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs) {
   Diagnostics d;
   d.kinetic = kinetic_energy(particles.mass, particles.velocity);

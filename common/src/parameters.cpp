@@ -2,6 +2,7 @@
 
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
+#include "springlab/selection.hpp"
 
 #include <unistd.h>
 
@@ -95,10 +96,11 @@ void validate(const SceneParameters& p) {
         "it needs about " + number(std::round(particles * bytes_per_particle / (1 << 20))) +
             " MiB; at most " + number(std::floor(available / bytes_per_particle)) +
             " particles fit in half of this machine's memory");
-  if (p.displaced_particle >= particles)
-    throw InvalidParameter(
-        "displaced_particle", std::to_string(p.displaced_particle),
-        "0 <= displaced_particle <= " + number(particles - 1) + " (rows x cols - 1)");
+  select_particles("pinned", p.pinned, p.rows, p.cols);
+  select_particles("displaced", p.displaced, p.rows, p.cols);
+  select_particles("pushed", p.pushed, p.rows, p.cols);
+  if (p.wind.enabled && p.wind.direction.isZero())
+    throw InvalidParameter("wind.direction", "(0, 0)", "a direction: x and y not both zero");
   if (p.duration / p.step > max_steps)
     throw InvalidParameter("duration / step", number(p.duration) + " s / " + number(p.step) + " s",
                            "at most " + number(max_steps) + " steps in one run");

@@ -1,7 +1,9 @@
 #include "springlab/scene.hpp"
 
+#include "springlab/builtin_scenes.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/scene_file.hpp"
+#include "springlab/selection.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -51,10 +53,13 @@ Scene build_scene(const SceneParameters& p, const Implementation& impl) {
   for (int row = 0; row < p.rows; ++row)
     for (int col = 0; col < p.cols; ++col)
       particles.position.col(row * p.cols + col) = grid_position(row, col, p.spacing);
-  particles.position.col(p.displaced_particle) += p.displacement;
+  for (int i : select_particles("displaced", p.displaced, p.rows, p.cols))
+    particles.position.col(i) += p.displacement;
   particles.velocity = Vectors::Zero(2, n);
   particles.mass = Eigen::VectorXd::Constant(n, p.mass);
   particles.pinned.assign(n, false);
+  for (int i : select_particles("pinned", p.pinned, p.rows, p.cols))
+    particles.pinned[i] = true;
 
   if (p.structural.enabled) {
     scene.springs = impl.structural_springs(p.rows, p.cols, p.structural);
@@ -64,6 +69,11 @@ Scene build_scene(const SceneParameters& p, const Implementation& impl) {
     const auto shear = impl.shear_springs(p.rows, p.cols, p.shear);
     check_springs(shear, n, "shear_springs (task 3)");
     scene.springs.insert(scene.springs.end(), shear.begin(), shear.end());
+  }
+  if (p.bend.enabled) {
+    const auto bend = impl.bend_springs(p.rows, p.cols, p.bend);
+    check_springs(bend, n, "bend_springs (task 5)");
+    scene.springs.insert(scene.springs.end(), bend.begin(), bend.end());
   }
   return scene;
 }
@@ -99,37 +109,22 @@ void validate(const Scene& scene) {
 }
 
 SceneParameters task_scene(int task) {
-  SceneParameters p;  // the lab's values; each task changes only what makes it that task
-  p.task = task;
-  p.name = "task" + std::to_string(task);
-  switch (task) {
-    case 1:  // two masses 1 m apart, the right one pulled 0.2 m along the spring
-      return p;
-    case 2:  // 2×2, structural springs, the bottom-right mass pulled out along the diagonal
-    case 3:  // the same with shear springs
-      p.rows = p.cols = 2;
-      p.shear.enabled = task == 3;
-      p.displaced_particle = 3;
-      p.displacement = Vec2(0.2, -0.2);
-      return p;
-    case 4:  // 3×3, structural and shear springs, Verlet
-      p.rows = p.cols = 3;
-      p.shear.enabled = true;
-      p.displaced_particle = 8;
-      p.displacement = Vec2(0.2, -0.2);
-      p.integrator = "verlet";
-      return p;
-  }
-  throw InvalidParameter("scene", "task" + std::to_string(task), "task1, task2, task3 or task4");
+  return load_scene("task" + std::to_string(task));
 }
 
 std::vector<std::string> task_scene_names() {
-  return {"task1", "task2", "task3", "task4"};
+  std::vector<std::string> names;
+  for (const BuiltinScene& scene : builtin_scenes())
+    names.emplace_back(scene.name);
+  return names;
 }
 
 SceneParameters load_scene(const std::string& name_or_path) {
-  for (int task = 1; task <= 4; ++task)
-    if (name_or_path == "task" + std::to_string(task)) return task_scene(task);
+  for (const BuiltinScene& scene : builtin_scenes())
+    if (name_or_path == scene.name) return parse_scene(scene.text, std::string(scene.path));
+  if (name_or_path.rfind("task", 0) == 0 && name_or_path.find('.') == std::string::npos)
+    throw InvalidParameter("scene", "\"" + name_or_path + "\"",
+                           "task1 ... task5 or the path of a readable scene file");
   return load_scene_file(name_or_path);
 }
 

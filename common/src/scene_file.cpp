@@ -5,6 +5,7 @@
 #include <toml++/toml.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 #include <type_traits>
 
@@ -101,10 +102,18 @@ void apply(const std::string& path, const toml::table& table, const std::string&
 SceneParameters load_scene_file(const std::string& path) {
   if (!std::filesystem::is_regular_file(path))
     throw InvalidParameter("scene", "\"" + path + "\"",
-                           "task1, task2, task3, task4 or the path of a readable scene file");
+                           "task1 ... task5 or the path of a readable scene file");
+  std::ifstream file(path);
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (!file) throw InvalidParameter("scene", "\"" + path + "\"", "a readable scene file");
+  return parse_scene(text.str(), path);
+}
+
+SceneParameters parse_scene(std::string_view text, const std::string& path) {
   toml::table table;
   try {
-    table = toml::parse_file(path);
+    table = toml::parse(text, path);
   } catch (const toml::parse_error& error) {
     throw InvalidParameter(place(path, error.source()), "(syntax)",
                            std::string(error.description()));

@@ -1,6 +1,7 @@
 #include "springlab/simulation.hpp"
 
 #include "springlab/errors.hpp"
+#include "springlab/selection.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,16 @@ double moderate_energy(const std::vector<Spring>& springs) {
   double energy = 0.0;
   for (const Spring& s : springs)
     energy += 0.5 * s.k * std::pow(0.1 * s.rest_length, 2);
+  return energy;
+}
+
+// The scale of the energy the wind and the push can give (see DivergenceLimits).
+double external_energy(const Particles& particles, const SceneParameters& p, int pushed) {
+  const double total_mass = particles.mass.sum();
+  double energy = 0.0;
+  if (p.wind.enabled) energy += 0.5 * total_mass * std::pow(1.5 * p.wind.speed, 2);
+  const double lightest = particles.mass.minCoeff();
+  if (pushed > 0) energy += pushed * std::pow(p.push.norm() * p.push_duration, 2) / (2 * lightest);
   return energy;
 }
 
@@ -32,22 +43,41 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
       }),
       limits_(limits) {
   validate(scene_);
-  // A pinned particle behaves as if infinitely heavy: its acceleration is always zero.
   const Particles& particles = scene_.particles;
+  const SceneParameters& p = scene_.parameters;
   inverse_mass_ = particles.mass.cwiseInverse();
-  for (int i = 0; i < particles.size(); ++i)
-    if (particles.pinned[i]) inverse_mass_[i] = 0.0;
+  start_position_ = particles.position;
+  if (p.wind.enabled) wind_.emplace(p.wind);
+  pushed_ = select_particles("pushed", p.pushed, p.rows, p.cols);
+  if (p.push_duration == 0.0 || p.push.isZero()) pushed_.clear();
   const Diagnostics start = diagnostics();
-  reference_energy_ = std::max(start.total(), moderate_energy(scene_.springs));
+  reference_energy_ = std::max(start.total(), moderate_energy(scene_.springs)) +
+                      external_energy(particles, p, int(pushed_.size()));
   check_divergence(true);
 }
 
 const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   ++evaluations_;
+  const SceneParameters& p = scene_.parameters;
+  const Particles& particles = scene_.particles;
   force_.setZero(2, r.cols());
   impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
+  if (p.gravity.enabled) impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
+  // The wind is sampled at the start of the step: its gusts change over seconds, not steps.
+  if (wind_) impl_->add_wind(*wind_, time(), r, v, force_);
+  if (time() < p.push_duration)
+    for (int i : pushed_)
+      force_.col(i) += p.push;
   acceleration_.noalias() = force_ * inverse_mass_.asDiagonal();
+  if (std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end())
+    impl_->hold_pinned(particles.pinned, acceleration_);
   return acceleration_;
+}
+
+Diagnostics Simulation::diagnostics() const {
+  const SceneParameters& p = scene_.parameters;
+  const Vec2 g = p.gravity.enabled ? p.gravity.acceleration : Vec2::Zero();
+  return diagnose(scene_.particles, scene_.springs, g, start_position_);
 }
 
 void Simulation::step() {

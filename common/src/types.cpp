@@ -8,6 +8,8 @@ std::string_view to_string(SpringFamily family) {
       return "structural";
     case SpringFamily::shear:
       return "shear";
+    case SpringFamily::bend:
+      return "bend";
   }
   return "unknown";
 }

@@ -45,7 +45,7 @@ SceneParameters two_masses(double k, double b, double mass, double u0, double h,
   p.structural.k = k;
   p.structural.b = b;
   p.mass = mass;
-  p.displaced_particle = 1;
+  p.displaced = "1";
   p.displacement = Vec2(u0, 0.0);
   p.step = h;
   p.integrator = integrator;

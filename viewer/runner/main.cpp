@@ -60,10 +60,10 @@ SceneParameters scene_from(const Options& options) {
 
 const Implementation& implementation_for(const Options& options, const SceneParameters& p) {
   if (options.impl == "reference") return reference_implementation();
-  if (p.task < 1 || p.task > 4)
+  if (p.task < 1 || p.task > 5)
     throw InvalidParameter("--impl student",
                            "scene \"" + p.name + "\" (task = " + std::to_string(p.task) + ")",
-                           "a scene of task 1-4: the student's code of that task runs; in a scene "
+                           "a scene of task 1-5: the student's code of that task runs; in a scene "
                            "file, set task = N");
   return student_implementation(p.task);
 }
@@ -174,7 +174,7 @@ int run(const Options& options) {
 int main(int argc, char** argv) {
   Options options;
   CLI::App app{"springlab-run: run a springlab scene without a window and write its state as CSV"};
-  app.add_option("--scene", options.scene, "task1, task2, task3, task4 or a scene file (TOML)")
+  app.add_option("--scene", options.scene, "task1 ... task5 or a scene file (TOML)")
       ->capture_default_str();
   app.add_option("--impl", options.impl, "whose code runs: the reference or the student's")
       ->check(CLI::IsMember({"reference", "student"}))

@@ -23,14 +23,24 @@ double angular_momentum(const Eigen::VectorXd& mass, const Vectors& r, const Vec
 /// Σ m_i r_i / Σ m_i, m.
 Vec2 centre_of_mass(const Eigen::VectorXd& mass, const Vectors& r);
 
+/// -Σ m_i g·(r_i - start_i), J: gravity's potential energy, zero at the start positions.
+double gravitational_energy(const Eigen::VectorXd& mass, const Vectors& r, const Vectors& start,
+                            const Vec2& g);
+
 struct Diagnostics {
   double kinetic = 0.0;           ///< J
   double potential = 0.0;         ///< spring energy, J
+  double gravitational = 0.0;     ///< gravity's potential energy, zero at the start, J
   Vec2 momentum{0.0, 0.0};        ///< kg·m/s
   double angular_momentum = 0.0;  ///< about the origin, kg·m²/s
-  double total() const { return kinetic + potential; }
+  /// Kinetic + spring + gravitational: constant without dampers, wind and pushes.
+  double total() const { return kinetic + potential + gravitational; }
 };
 
 Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs);
+
+/// The same with gravity g, its potential energy measured from the positions `start`.
+Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs, const Vec2& g,
+                     const Vectors& start);
 
 }  // namespace springlab

@@ -5,6 +5,7 @@
 
 #include "springlab/parameters.hpp"
 #include "springlab/types.hpp"
+#include "springlab/wind.hpp"
 
 #include <string_view>
 #include <vector>
@@ -28,13 +29,18 @@ struct Implementation {
   // Task 4 (task4_verlet.hpp)
   void (*verlet_step)(const AccelerationFunction&, double, Vectors&, Vectors&,
                       VerletHistory&) = nullptr;
+  // Task 5 (task5_fabric.hpp)
+  std::vector<Spring> (*bend_springs)(int, int, const SpringFamilyParameters&) = nullptr;
+  void (*add_gravity)(const Eigen::VectorXd&, const Vec2&, Vectors&) = nullptr;
+  void (*add_wind)(const WindField&, double, const Vectors&, const Vectors&, Vectors&) = nullptr;
+  void (*hold_pinned)(const std::vector<bool>&, Vectors&) = nullptr;
 };
 
 /// The reference implementation (solutions/).
 const Implementation& reference_implementation();
 
-/// The student's task `task` (1–4) with the reference for every other task: what `./lab test
-/// taskN --student` grades. Throws InvalidParameter for a task outside 1–4.
+/// The student's task `task` (1–5) with the reference for every other task: what `./lab test
+/// taskN --student` grades. Throws InvalidParameter for a task outside 1–5.
 const Implementation& student_implementation(int task);
 
 }  // namespace springlab

@@ -22,8 +22,8 @@ struct Scene {
 Vec2 grid_position(int row, int col, double spacing);
 
 /// Builds the grid after validate(p): equal masses at grid_position, at rest, then the displaced
-/// particle moved; springs from impl's builders for the enabled families only (a scene pays for
-/// nothing it leaves out).
+/// particles moved and the pinned ones flagged; springs from impl's builders for the enabled
+/// families only (a scene pays for nothing it leaves out).
 Scene build_scene(const SceneParameters& p, const Implementation& impl);
 
 /// The first particle whose position or velocity is not a finite number, with the component
@@ -35,13 +35,14 @@ std::pair<int, std::string> first_non_finite(const Particles& particles);
 /// existing particles with k ≥ 0, b ≥ 0 and ℓ0 > 0. Throws InvalidParameter naming the field.
 void validate(const Scene& scene);
 
-/// The lab's scene for task 1–4 (handout sections 1–4). Throws InvalidParameter otherwise.
+/// The lab's scene for task 1–5 (handout sections 1–5), read from common/scenes/taskN.toml as
+/// compiled into the kit. Throws InvalidParameter for any other number.
 SceneParameters task_scene(int task);
 
-/// "task1" … "task4".
+/// "task1" … "task5".
 std::vector<std::string> task_scene_names();
 
-/// task_scene for "task1" … "task4"; otherwise the scene file at that path (scene_file.hpp).
+/// The built-in scene "task1" … "task5"; otherwise the scene file at that path (scene_file.hpp).
 SceneParameters load_scene(const std::string& name_or_path);
 
 }  // namespace springlab

@@ -4,17 +4,24 @@
 //   cols = 5
 //   structural.k = 40        # or a [structural] table with k = 40
 //   integrator = "verlet"
-// Keys left out keep the lab's values (SceneParameters' defaults).
+//   pinned = "top-row"       # particle sets as in selection.hpp
+// Keys left out keep the lab's values (SceneParameters' defaults). The lab's own scenes are
+// such files: common/scenes/task1.toml … task5.toml.
 #pragma once
 
 #include "springlab/parameters.hpp"
 
 #include <string>
+#include <string_view>
 
 namespace springlab {
 
 /// Reads a scene file. Throws InvalidParameter whose message names the file, the line and the
 /// key: for TOML syntax errors, unknown keys (with the nearest known one) and bad values.
 SceneParameters load_scene_file(const std::string& path);
+
+/// Reads a scene from TOML text; `path` names it in error messages (the built-in scenes are the
+/// files common/scenes/taskN.toml, compiled into the kit).
+SceneParameters parse_scene(std::string_view text, const std::string& path);
 
 }  // namespace springlab

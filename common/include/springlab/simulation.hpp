@@ -6,8 +6,10 @@
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
+#include "springlab/wind.hpp"
 
 #include <memory>
+#include <optional>
 #include <string_view>
 
 namespace springlab {
@@ -15,9 +17,11 @@ namespace springlab {
 /// When a run counts as diverged (besides any NaN or infinity, which always does).
 struct DivergenceLimits {
   /// The total energy may not exceed this many times the reference energy: the larger of the
-  /// energy at t = 0 and the energy of every spring stretched by 10 % of its rest length. Springs
-  /// store energy and dampers remove it, so a stable step never comes near; an unstable one
-  /// passes it within a few hundred steps of reaching visible amplitudes.
+  /// energy at t = 0 and the energy of every spring stretched by 10 % of its rest length, plus
+  /// what the wind and the push can give (every free particle at 1.5 times the wind speed, and
+  /// moving at the speed the push gives it alone). Springs and gravity store energy and dampers
+  /// remove it, so a stable step never comes near; an unstable one passes it within a few
+  /// hundred steps of reaching visible amplitudes.
   double energy_growth = 1e4;
   /// Steps between energy checks (finiteness is checked every step).
   int energy_check_interval = 8;
@@ -41,7 +45,9 @@ class Simulation {
   void check() const;
 
   /// The model the integrator sees: a_i = F_i / m_i with the spring and damper forces of every
-  /// spring (impl.accumulate_spring_forces); zero for pinned particles.
+  /// spring (impl.accumulate_spring_forces), then the forces the scene enables: gravity
+  /// (impl.add_gravity), wind at the step's start time (impl.add_wind), the push; then
+  /// impl.hold_pinned when any particle is pinned. A scene pays only for what it enables.
   const Vectors& acceleration(const Vectors& r, const Vectors& v);
 
   double time() const { return double(steps_) * scene_.parameters.step; }  ///< s
@@ -52,7 +58,8 @@ class Simulation {
   const SceneParameters& parameters() const { return scene_.parameters; }
   const Implementation& implementation() const { return *impl_; }
   Integrator& integrator() { return *integrator_; }
-  Diagnostics diagnostics() const { return diagnose(scene_.particles, scene_.springs); }
+  /// Energies (gravity's measured from the start positions) and momenta of the current state.
+  Diagnostics diagnostics() const;
   double reference_energy() const { return reference_energy_; }  ///< J, see DivergenceLimits
 
  private:
@@ -66,7 +73,10 @@ class Simulation {
   double reference_energy_ = 0.0;
   long steps_ = 0;
   long evaluations_ = 0;
-  Eigen::VectorXd inverse_mass_;  // 1/m_i, zero for pinned particles
+  Eigen::VectorXd inverse_mass_;   // 1/m_i
+  std::optional<WindField> wind_;  // when the scene has wind
+  std::vector<int> pushed_;        // the particles the push acts on
+  Vectors start_position_;         // where gravity's potential energy is zero
   Vectors force_, acceleration_;
 };
 

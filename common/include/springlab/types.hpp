@@ -26,8 +26,13 @@ struct Particles {
   int size() const { return static_cast<int>(position.cols()); }
 };
 
-/// The kinds of spring in a grid (handout sections 2 and 3). Each family has its own k, b and ℓ0.
-enum class SpringFamily { structural, shear };
+/// The kinds of spring in a grid (handout sections 2, 3 and 5). Each family has its own k, b and
+/// ℓ0.
+enum class SpringFamily { structural, shear, bend };
+
+/// Every family, in the order above: for loops over families (toggles, counts, colours).
+inline constexpr SpringFamily spring_families[] = {SpringFamily::structural, SpringFamily::shear,
+                                                   SpringFamily::bend};
 
 std::string_view to_string(SpringFamily family);
 
