@@ -51,7 +51,9 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
   pushed_ = select_particles("pushed", p.pushed, p.rows, p.cols);
   if (p.push_duration == 0.0 || p.push.isZero()) pushed_.clear();
   const Diagnostics start = diagnostics();
-  reference_energy_ = std::max(start.total(), moderate_energy(scene_.springs)) +
+  // The floor, every particle moving one spacing per second, matters for scenes without springs.
+  const double floor = 0.5 * particles.mass.sum() * p.spacing * p.spacing;
+  reference_energy_ = std::max({start.total(), moderate_energy(scene_.springs), floor}) +
                       external_energy(particles, p, int(pushed_.size()));
   check_divergence(true);
 }

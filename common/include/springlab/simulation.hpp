@@ -17,7 +17,8 @@ namespace springlab {
 /// When a run counts as diverged (besides any NaN or infinity, which always does).
 struct DivergenceLimits {
   /// The total energy may not exceed this many times the reference energy: the larger of the
-  /// energy at t = 0 and the energy of every spring stretched by 10 % of its rest length, plus
+  /// energy at t = 0, the energy of every spring stretched by 10 % of its rest length and the
+  /// kinetic energy of every particle moving one grid spacing per second, plus
   /// what the wind and the push can give (every free particle at 1.5 times the wind speed, and
   /// moving at the speed the push gives it alone). Springs and gravity store energy and dampers
   /// remove it, so a stable step never comes near; an unstable one passes it within a few

@@ -1,0 +1,142 @@
+// The kit's scene machinery (tag [core]): particle sets, the built-in scene files, the wind
+// field, the push, and gravity's share of the energy. Students never edit any of it.
+#include "lab_testing.hpp"
+#include "springlab/builtin_scenes.hpp"
+#include "springlab/errors.hpp"
+#include "springlab/selection.hpp"
+#include "springlab/this_implementation.hpp"
+#include "springlab/wind.hpp"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+using namespace springlab;
+using namespace springlab::testing;
+using Catch::Matchers::Contains;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+std::string rejection_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const InvalidParameter& error) {
+    return error.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("Particle sets: names, indices, ranges and mixtures", "[core][selection]") {
+  using V = std::vector<int>;
+  CHECK(select_particles("pinned", "none", 3, 4) == V{});
+  CHECK(select_particles("pinned", "top-row", 3, 4) == V{0, 1, 2, 3});
+  CHECK(select_particles("pinned", "bottom-row", 3, 4) == V{8, 9, 10, 11});
+  CHECK(select_particles("pinned", "left-column", 3, 4) == V{0, 4, 8});
+  CHECK(select_particles("pinned", "right-column", 3, 4) == V{3, 7, 11});
+  CHECK(select_particles("pinned", "top-corners", 3, 4) == V{0, 3});
+  CHECK(select_particles("pinned", "corners", 3, 4) == V{0, 3, 8, 11});
+  CHECK(select_particles("pinned", "all", 2, 2) == V{0, 1, 2, 3});
+  CHECK(select_particles("pinned", "5, 1-3,top-corners", 3, 4) == V{0, 1, 2, 3, 5});
+}
+
+TEST_CASE("Particle sets: bad text names the field, the text and the forms allowed",
+          "[core][selection]") {
+  const auto message = [](const char* text) {
+    return rejection_of([&] { select_particles("pinned", text, 3, 4); });
+  };
+  CHECK_THAT(message("12"), Contains("pinned = \"12\"") && Contains("from 0 to 11"));
+  CHECK_THAT(message("top"), Contains("pinned = \"top\"") && Contains("top-row"));
+  CHECK_THAT(message("3-1"), Contains("pinned = \"3-1\""));
+  CHECK_THAT(message("-2"), Contains("pinned = \"-2\""));
+  CHECK_THAT(message("1,,2"), Contains("pinned = \"1,,2\""));
+  SceneParameters p = task_scene(5);
+  CHECK_THAT(rejection_of([&] { set_parameter(p, "pinned", "400"), validate(p); }),
+             Contains("pinned = \"400\"") && Contains("from 0 to 399"));
+}
+
+TEST_CASE("Built-in scenes: each task's scene is the TOML file the kit ships", "[core][scene]") {
+  REQUIRE(task_scene_names() ==
+          std::vector<std::string>{"task1", "task2", "task3", "task4", "task5"});
+  for (const BuiltinScene& builtin : builtin_scenes()) {
+    CAPTURE(builtin.path);
+    const SceneParameters p = load_scene(std::string(builtin.name));
+    CHECK(p.name == builtin.name);
+    CHECK(p.task == int(builtin.name.back() - '0'));
+    CHECK_NOTHROW(validate(p));
+    // The same file read from the source tree gives the same scene.
+    const std::filesystem::path file = std::filesystem::path(SPRINGLAB_SOURCE_DIR) / builtin.path;
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    CHECK(text.str() == builtin.text);
+  }
+  const SceneParameters fabric = task_scene(5);
+  CHECK(fabric.rows == 20);
+  CHECK(fabric.cols == 20);
+  CHECK((fabric.shear.enabled && fabric.bend.enabled && fabric.gravity.enabled));
+  CHECK(fabric.bend.rest_length == 2.0);
+  CHECK_THAT(rejection_of([] { load_scene("task6"); }), Contains("task1 ... task5"));
+}
+
+TEST_CASE("Wind field: the speed stays within the gustiness, gusts travel with the wind",
+          "[core][wind]") {
+  WindParameters p;
+  p.direction = Vec2(3.0, 4.0);
+  p.speed = 6.0;
+  p.gustiness = 0.4;
+  const WindField wind(p);
+  const Vec2 unit = p.direction.normalized();
+  double slowest = 1e9, fastest = 0.0;
+  for (double t = 0.0; t < 60.0; t += 0.01) {
+    const Vec2 w = wind.velocity(t, Vec2(1.0, 2.0));
+    CHECK_THAT(w.normalized().dot(unit), WithinAbs(1.0, 1e-12));
+    slowest = std::min(slowest, w.norm());
+    fastest = std::max(fastest, w.norm());
+    // A point 5 m downwind sees the same gust 5/speed seconds later.
+    const Vec2 later = wind.velocity(t + 5.0 / p.speed, Vec2(1.0, 2.0) + 5.0 * unit);
+    CHECK_THAT(later.norm(), WithinRel(w.norm(), 1e-9));
+  }
+  CHECK(slowest >= p.speed * (1 - p.gustiness) - 1e-12);
+  CHECK(fastest <= p.speed * (1 + p.gustiness) + 1e-12);
+  CHECK(fastest - slowest > p.speed * p.gustiness);  // it really gusts
+  p.gustiness = 0.0;
+  CHECK_THAT(WindField(p).velocity(7.0, Vec2(2.0, 1.0)).norm(), WithinRel(6.0, 1e-12));
+}
+
+TEST_CASE("Push: the applied force acts on the chosen particles while t < push_duration",
+          "[core][push]") {
+  INFO("a free particle under a constant force F for T seconds moves F T^2 / (2 m)");
+  SceneParameters p;
+  p.structural.enabled = false;
+  p.displaced = "none";
+  p.pushed = "1";
+  p.push = Vec2(0.4, -0.2);
+  p.push_duration = 0.5;
+  p.integrator = "verlet";  // exact for a constant force
+  Simulation sim(p, implementation());
+  sim.advance(50);
+  const Vec2 a = p.push / p.mass;
+  CHECK_THAT(Vec2(sim.particles().position.col(1)),
+             IsNear(grid_position(0, 1, 1.0) + 0.5 * a * 0.25, 1e-12));
+  CHECK(Vec2(sim.particles().position.col(0)) == grid_position(0, 0, 1.0));
+  sim.advance(50);  // afterwards it coasts at a T (to O(h): the push ends inside a step)
+  CHECK_THAT(Vec2(sim.particles().velocity.col(1)), IsNear(a * 0.5, a.norm() * p.step));
+}
+
+TEST_CASE("Energy: gravity's potential energy makes free fall conserve the total",
+          "[core][gravity]") {
+  SceneParameters p;
+  p.structural.enabled = false;
+  p.gravity.enabled = true;
+  p.integrator = "verlet";
+  Simulation sim(p, implementation());
+  const double start = sim.diagnostics().total();
+  sim.advance(300);
+  const Diagnostics end = sim.diagnostics();
+  CHECK(end.kinetic > 1.0);
+  CHECK_THAT(end.total(), WithinAbs(start, 1e-9 * end.kinetic));
+}
