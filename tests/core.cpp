@@ -16,21 +16,6 @@ using namespace springlab::testing;
 using Catch::Matchers::Contains;
 using Catch::Matchers::WithinRel;
 
-namespace {
-
-// The message of the InvalidParameter that `action` throws, or "" when it throws none.
-template <class Action>
-std::string rejection(Action&& action) {
-  try {
-    action();
-  } catch (const InvalidParameter& error) {
-    return error.what();
-  }
-  return "";
-}
-
-}  // namespace
-
 TEST_CASE("Parameters: the defaults are the lab's values", "[core][parameters]") {
   const SceneParameters p;
   CHECK(p.step == 0.01);

@@ -17,19 +17,6 @@ using Catch::Matchers::Contains;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
 
-namespace {
-
-std::string rejection_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const InvalidParameter& error) {
-    return error.what();
-  }
-  return "";
-}
-
-}  // namespace
-
 TEST_CASE("Particle sets: names, indices, ranges and mixtures", "[core][selection]") {
   using V = std::vector<int>;
   CHECK(select_particles("pinned", "none", 3, 4) == V{});
@@ -46,7 +33,7 @@ TEST_CASE("Particle sets: names, indices, ranges and mixtures", "[core][selectio
 TEST_CASE("Particle sets: bad text names the field, the text and the forms allowed",
           "[core][selection]") {
   const auto message = [](const char* text) {
-    return rejection_of([&] { select_particles("pinned", text, 3, 4); });
+    return rejection([&] { select_particles("pinned", text, 3, 4); });
   };
   CHECK_THAT(message("12"), Contains("pinned = \"12\"") && Contains("from 0 to 11"));
   CHECK_THAT(message("top"), Contains("pinned = \"top\"") && Contains("top-row"));
@@ -54,7 +41,7 @@ TEST_CASE("Particle sets: bad text names the field, the text and the forms allow
   CHECK_THAT(message("-2"), Contains("pinned = \"-2\""));
   CHECK_THAT(message("1,,2"), Contains("pinned = \"1,,2\""));
   SceneParameters p = task_scene(5);
-  CHECK_THAT(rejection_of([&] { set_parameter(p, "pinned", "400"), validate(p); }),
+  CHECK_THAT(rejection([&] { set_parameter(p, "pinned", "400"), validate(p); }),
              Contains("pinned = \"400\"") && Contains("from 0 to 399"));
 }
 
@@ -79,7 +66,7 @@ TEST_CASE("Built-in scenes: each task's scene is the TOML file the kit ships", "
   CHECK(fabric.cols == 20);
   CHECK((fabric.shear.enabled && fabric.bend.enabled && fabric.gravity.enabled));
   CHECK(fabric.bend.rest_length == 2.0);
-  CHECK_THAT(rejection_of([] { load_scene("task6"); }), Contains("task1 ... task5"));
+  CHECK_THAT(rejection([] { load_scene("task6"); }), Contains("task1 ... task5"));
 }
 
 TEST_CASE("Wind field: the speed stays within the gustiness, gusts travel with the wind",

@@ -3,6 +3,7 @@
 // a simulated run into a number theory predicts. Independent of the implementation under test.
 #pragma once
 
+#include "springlab/errors.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/simulation.hpp"
 #include "springlab/stability.hpp"
@@ -111,6 +112,17 @@ bool carries(const Spring& spring, SpringFamily family, const SpringFamilyParame
 
 /// The largest |P(t) - P(0)| of total linear momentum while stepping sim `steps` times, kg·m/s.
 double momentum_drift(Simulation& sim, long steps);
+
+/// The message of the InvalidParameter that `action` throws, or "" when it throws none.
+template <class Action>
+std::string rejection(Action&& action) {
+  try {
+    action();
+  } catch (const InvalidParameter& error) {
+    return error.what();
+  }
+  return "";
+}
 
 /// The index of grid particle [row, col].
 inline int at(int row, int col, int cols) {
