@@ -113,7 +113,8 @@ TEST_CASE("Scene files: values, and errors with the file, the line and the key",
     file << "rows = 3\nshear.rest_lenght = 2\n";
   }
   CHECK_THAT(rejection([&] { load_scene_file(path); }),
-             Contains(path + ":2") && Contains("did you mean \"shear.rest_length\""));
+             Contains(path + ":2: shear.rest_lenght = 2 (a whole number)") &&
+                 Contains("did you mean \"shear.rest_length\""));
   {
     std::ofstream file(path);
     file << "rows = = 3\n";

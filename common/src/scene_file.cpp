@@ -82,11 +82,18 @@ void apply(const std::string& path, const toml::table& table, const std::string&
     }
     const std::string where = place(path, node.source()) + ": ";
     std::string text;
+    bool known = false;
     const char* wanted = nullptr;  // set when the key is known but the TOML type does not fit
     for_each_field(p, [&](const FieldInfo& info, auto& value) {
       using T = std::decay_t<decltype(value)>;
-      if (info.key == key && !text_for<T>(node, text)) wanted = expected_kind<T>();
+      if (info.key != key) return;
+      known = true;
+      if (!text_for<T>(node, text)) wanted = expected_kind<T>();
     });
+    if (!known)
+      throw InvalidParameter(
+          where + key, as_written(node),
+          "there is no parameter \"" + key + "\"; did you mean \"" + nearest_key(key) + "\"?");
     if (wanted)
       throw InvalidParameter(where + key, as_written(node), std::string("expected ") + wanted);
     try {
