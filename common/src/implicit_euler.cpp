@@ -136,13 +136,17 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
   assemble(model, r, v, h);
   rhs -= h * h * stiffness_times_v_;
   if (guess_.size() != rhs.size()) guess_.setZero(rhs.size());
-  solver_.setTolerance(1e-12);
-  solver_.setMaxIterations(std::max<Eigen::Index>(2 * rhs.size(), 200));
+  // Solved for Δv / |rhs|: CG judges convergence by squared norms, which underflow once a
+  // decaying motion reaches 1e-155 and would stop it before its first iteration.
+  const double scale = rhs.norm();
   solver_.compute(matrix_);
-  const Eigen::VectorXd dv = solver_.solveWithGuess(rhs, guess_);
+  const Eigen::VectorXd dv = scale == 0.0
+                                 ? Eigen::VectorXd::Zero(rhs.size()).eval()
+                                 : scale * solver_.solveWithGuess(rhs / scale, guess_ / scale);
   // CG's tolerance is far below any truncation error; a step that misses it by a thousand times
   // still does no harm, one that misses more (or ends in NaN) is reported.
-  if (!dv.allFinite() || (solver_.info() != Eigen::Success && solver_.error() > 1e-9)) {
+  if (!dv.allFinite() ||
+      (scale != 0.0 && solver_.info() != Eigen::Success && solver_.error() > 1e-9)) {
     std::ostringstream why;
     why << "the conjugate-gradient solve of the implicit step did not converge (relative residual "
         << solver_.error() << " after " << solver_.iterations() << " iterations)";
