@@ -231,3 +231,27 @@ TEST_CASE("Stability: implicit Euler stays bounded at h = 1 s on every scene",
   CHECK(largest <= start * (1 + 1e-9));
   CHECK(sim.diagnostics().total() < 1e-3 * start);  // backward Euler damps strongly at large h
 }
+
+TEST_CASE("Stability: beyond the limit a deformation grows at the step matrix's spectral radius",
+          "[stability][runs]") {
+  // The per-step growth of the strain, fitted over the second half of a run from 1e-9 m to
+  // 1e-3 m, against the largest |eigenvalue| of the method's step matrix at the same h.
+  const std::string scene = GENERATE("two masses", "3x3 grid");
+  const std::string method = GENERATE(from_range(explicit_methods));
+  const double h = (method == "explicit-euler" ? 3.0 : 1.02) * limit_of(scene, method).step;
+  SceneParameters p = scene_named(scene);
+  p.step = h;
+  p.integrator = method;
+  const std::vector<double> history =
+      strain_history(perturbed_at_rest(p, implementation(), 1e-9, 5), implementation(), 20000);
+  REQUIRE(history.size() >= 20);
+  double sn = 0, sy = 0, snn = 0, sny = 0, count = 0;
+  for (std::size_t n = history.size() / 2; n < history.size(); ++n) {
+    const double x = double(n), y = std::log(history[n]);
+    sn += x, sy += y, snn += x * x, sny += x * y, count += 1;
+  }
+  const double measured = std::exp((count * sny - sn * sy) / (count * snn - sn * sn));
+  const double predicted = step_growth_factor(model_of(scene), method, h);
+  CAPTURE(scene, method, h, history.size(), measured, predicted);
+  CHECK_THAT(measured, WithinRel(predicted, 0.02));
+}
