@@ -7,6 +7,8 @@
 #include "springlab/integrator.hpp"
 #include "springlab/this_implementation.hpp"
 
+#include <Eigen/Cholesky>
+
 #include <cmath>
 
 using namespace springlab;
@@ -251,4 +253,33 @@ TEST_CASE("Energy: dampers never add energy, whatever the method", "[integrators
   CHECK(worst_rise <= per_step);
   CHECK(largest <= start + std::pow(h * w, m.order) * start);
   CHECK(previous < 0.9 * start);
+}
+
+TEST_CASE("Implicit Euler: a step solves M + hC + h^2 K even when it is badly conditioned",
+          "[integrators][implicit-euler]") {
+  // A 10x10 grid at its rest shape with random velocities: f_n is the dampers' force and K the
+  // stiffness at rest (no spring compressed, so nothing is clamped). The step must give
+  //   (M + hC + h^2 K) dv = h (f_n - h K v_n),
+  // here solved densely. At the lab's values CG converges in a few iterations; with k = 1e6 N/m,
+  // m = 1e-4 kg and h = 1 s (h^2 w_max^2 ~ 1e11) it does not, and the direct fallback must.
+  const bool stiff = GENERATE(false, true);
+  SceneParameters p = fabric_10x10(stiff ? 1.0 : 0.01, "implicit-euler");
+  if (stiff) p.structural.k = p.shear.k = 1e6, p.mass = 1e-4;
+  Scene scene = build_scene(p, implementation());
+  randomise(scene.particles, 0.0, 0.1, 3);
+  const Particles& start = scene.particles;
+  const LinearModel model = linearise(scene.springs, start.position, start.mass, start.pinned);
+  const Eigen::VectorXd v0 = start.velocity.reshaped();
+  const Eigen::VectorXd f0 = -model.damping * v0;
+  const double h = p.step;
+  const Eigen::MatrixXd a =
+      Eigen::MatrixXd(model.mass.asDiagonal()) + h * model.damping + h * h * model.stiffness;
+  const Eigen::VectorXd dv = a.ldlt().solve(h * (f0 - h * model.stiffness * v0));
+  Simulation sim(scene, implementation());
+  sim.step();
+  const Eigen::VectorXd v1 = sim.particles().velocity.reshaped();
+  // Two solutions of a system of condition number ~1e11 agree to about that times 1e-16.
+  const double tolerance = stiff ? 1e-4 : 1e-10;
+  CAPTURE(stiff, (v1 - v0 - dv).norm(), dv.norm());
+  CHECK((v1 - v0 - dv).norm() <= tolerance * dv.norm());
 }
