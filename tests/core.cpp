@@ -74,7 +74,8 @@ TEST_CASE("Parameters: an unknown key suggests the nearest known one", "[core][p
                set_parameter(p, "integrator", "rk5");
                validate(p);
              }),
-             Contains("one of explicit-euler, verlet"));
+             Contains("one of explicit-euler, symplectic-euler, verlet, velocity-verlet, rk4, "
+                      "implicit-euler"));
 }
 
 TEST_CASE("Parameters: --set changes every kind of field", "[core][parameters]") {

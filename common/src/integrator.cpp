@@ -1,5 +1,6 @@
 #include "springlab/integrator.hpp"
 
+#include "integrators.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/verlet_support.hpp"
 
@@ -9,27 +10,29 @@
 namespace springlab {
 namespace {
 
+// The student's task 1 step (integrator.hpp: order 1, one evaluation, h < 2ζ/ω).
 class ExplicitEuler final : public Integrator {
  public:
   explicit ExplicitEuler(const Implementation& impl) : impl_(impl) {}
   std::string_view name() const override { return "explicit-euler"; }
-  void step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v) override {
-    impl_.explicit_euler_step(a, h, r, v);
+  void step(const Model& model, double h, Vectors& r, Vectors& v) override {
+    impl_.explicit_euler_step(model.acceleration, h, r, v);
   }
 
  private:
   const Implementation& impl_;
 };
 
-// Verlet remembers r_{n-1}; that memory only means something for the same h and particle count.
+// The student's task 4 step (order 2, h < 2/ω_max). It remembers r_{n-1}; that memory only means
+// something for the same h and particle count.
 class Verlet final : public Integrator {
  public:
   explicit Verlet(const Implementation& impl) : impl_(impl) {}
   std::string_view name() const override { return "verlet"; }
-  void step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v) override {
+  void step(const Model& model, double h, Vectors& r, Vectors& v) override {
     if (h != h_ || history_.previous_position.cols() != r.cols()) restart();
     h_ = h;
-    impl_.verlet_step(a, h, r, v, history_);
+    impl_.verlet_step(model.acceleration, h, r, v, history_);
   }
   void restart() override { history_ = VerletHistory{}; }
 
@@ -42,7 +45,8 @@ class Verlet final : public Integrator {
 }  // namespace
 
 std::vector<std::string> integrator_names() {
-  return {"explicit-euler", "verlet"};
+  return {"explicit-euler", "symplectic-euler", "verlet", "velocity-verlet", "rk4",
+          "implicit-euler"};
 }
 
 bool is_integrator_name(std::string_view name) {
@@ -50,11 +54,21 @@ bool is_integrator_name(std::string_view name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+std::string integrator_choices() {
+  std::string text = "one of ";
+  for (const std::string& name : integrator_names())
+    text += (text.size() > 7 ? ", " : "") + name;
+  return text;
+}
+
 std::unique_ptr<Integrator> make_integrator(std::string_view name, const Implementation& impl) {
   if (name == "explicit-euler") return std::make_unique<ExplicitEuler>(impl);
+  if (name == "symplectic-euler") return detail::make_symplectic_euler();
   if (name == "verlet") return std::make_unique<Verlet>(impl);
-  throw InvalidParameter("integrator", "\"" + std::string(name) + "\"",
-                         "one of explicit-euler, verlet");
+  if (name == "velocity-verlet") return detail::make_velocity_verlet();
+  if (name == "rk4") return detail::make_rk4();
+  if (name == "implicit-euler") return detail::make_implicit_euler();
+  throw InvalidParameter("integrator", "\"" + std::string(name) + "\"", integrator_choices());
 }
 
 bool velocity_settled(const Vectors& v_new, const Vectors& v_old, const Vectors& r, double h) {

@@ -104,12 +104,8 @@ void validate(const SceneParameters& p) {
   if (p.duration / p.step > max_steps)
     throw InvalidParameter("duration / step", number(p.duration) + " s / " + number(p.step) + " s",
                            "at most " + number(max_steps) + " steps in one run");
-  if (!is_integrator_name(p.integrator)) {
-    std::string names;
-    for (const auto& name : integrator_names())
-      names += (names.empty() ? "" : ", ") + name;
-    throw InvalidParameter("integrator", "\"" + p.integrator + "\"", "one of " + names);
-  }
+  if (!is_integrator_name(p.integrator))
+    throw InvalidParameter("integrator", "\"" + p.integrator + "\"", integrator_choices());
 }
 
 std::string nearest_key(std::string_view key) {

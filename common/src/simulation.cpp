@@ -85,8 +85,8 @@ Diagnostics Simulation::diagnostics() const {
 void Simulation::step() {
   Particles& particles = scene_.particles;
   try {
-    integrator_->step(acceleration_function_, scene_.parameters.step, particles.position,
-                      particles.velocity);
+    const Model model{acceleration_function_, scene_.springs, particles.mass, particles.pinned};
+    integrator_->step(model, scene_.parameters.step, particles.position, particles.velocity);
     ++steps_;
     check_divergence(steps_ % limits_.energy_check_interval == 0);
   } catch (const StepFailed& failure) {

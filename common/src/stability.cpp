@@ -1,6 +1,8 @@
 #include "springlab/stability.hpp"
 
+#include "spring_matrices.hpp"
 #include "springlab/errors.hpp"
+#include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 
 #include <Eigen/Eigenvalues>
@@ -32,13 +34,9 @@ LinearModel linearise(const std::vector<Spring>& springs, const Vectors& r,
   Eigen::MatrixXd stiffness = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   Eigen::MatrixXd damping = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   for (const Spring& s : springs) {
-    const Vec2 d = r.col(s.p) - r.col(s.q);
-    const double length = d.norm();
-    const Vec2 u = d / length;
-    const Eigen::Matrix2d along = u * u.transpose();
     // Hessian of ½k(|d| - ℓ0)²: stiff along the spring, (1 - ℓ0/L)·k across it.
     const Eigen::Matrix2d hessian =
-        s.k * (along + (1.0 - s.rest_length / length) * (Eigen::Matrix2d::Identity() - along));
+        detail::stiffness_block(r.col(s.p) - r.col(s.q), s.k, s.rest_length, false);
     add_pair_block(stiffness, s.p, s.q, hessian);
     add_pair_block(damping, s.p, s.q, s.b * Eigen::Matrix2d::Identity());
   }
@@ -96,11 +94,35 @@ double verlet_critical_step(const LinearModel& model) {
   return 2.0 / highest_frequency(model);
 }
 
-double critical_step(const LinearModel& model, std::string_view integrator) {
-  if (integrator == "explicit-euler") return explicit_euler_critical_step(model);
-  if (integrator == "verlet") return verlet_critical_step(model);
-  throw InvalidParameter("integrator", "\"" + std::string(integrator) + "\"",
-                         "one of explicit-euler, verlet");
+double highest_frequency_bound(const std::vector<Spring>& springs, const Vectors& r,
+                               const Eigen::VectorXd& mass, const std::vector<bool>& pinned) {
+  // Row i of K gets |B| from the spring's diagonal block and, if the other end is free, |B|
+  // again from the off-diagonal one.
+  Vectors row_sums = Vectors::Zero(2, r.cols());
+  for (const Spring& s : springs) {
+    const Eigen::Matrix2d b =
+        detail::stiffness_block(r.col(s.p) - r.col(s.q), s.k, s.rest_length, false).cwiseAbs();
+    const Vec2 sums = b.rowwise().sum();
+    row_sums.col(s.p) += (pinned[std::size_t(s.q)] ? 1.0 : 2.0) * sums;
+    row_sums.col(s.q) += (pinned[std::size_t(s.p)] ? 1.0 : 2.0) * sums;
+  }
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < r.cols(); ++i)
+    if (!pinned[std::size_t(i)]) largest = std::max(largest, row_sums.col(i).maxCoeff() / mass[i]);
+  return std::sqrt(largest);
+}
+
+double damping_rate_bound(const std::vector<Spring>& springs, const Eigen::VectorXd& mass,
+                          const std::vector<bool>& pinned) {
+  Eigen::VectorXd row_sums = Eigen::VectorXd::Zero(mass.size());
+  for (const Spring& s : springs) {
+    row_sums[s.p] += (pinned[std::size_t(s.q)] ? 1.0 : 2.0) * s.b;
+    row_sums[s.q] += (pinned[std::size_t(s.p)] ? 1.0 : 2.0) * s.b;
+  }
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < mass.size(); ++i)
+    if (!pinned[std::size_t(i)]) largest = std::max(largest, row_sums[i] / mass[i]);
+  return largest;
 }
 
 LinearModel linearise_at_rest(const SceneParameters& p, const Implementation& impl) {

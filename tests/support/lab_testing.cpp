@@ -63,6 +63,30 @@ SceneParameters lab_grid(int rows, int cols, bool shear, double h, const std::st
   return p;
 }
 
+SceneParameters fabric_10x10(double h, const std::string& integrator) {
+  SceneParameters p = lab_grid(10, 10, true, h, integrator);
+  p.name = "fabric 10x10";
+  p.bend.enabled = true;  // the fabric's springs; its gravity, wind and pins only move the rest
+  return p;
+}
+
+PerturbedRun perturbed_run(SceneParameters p, const Implementation& impl, double h,
+                           const std::string& integrator, long steps, double ceiling) {
+  p.step = h;
+  p.integrator = integrator;
+  Scene scene = perturbed_at_rest(p, impl, 1e-9, 5);
+  PerturbedRun result;
+  result.start = strain_norm(scene.springs, scene.particles.position);
+  const std::vector<double> history =
+      strain_history(std::move(scene), impl, steps, 0.0, ceiling * result.start);
+  result.steps = long(history.size());
+  result.largest = result.start;
+  for (double norm : history)
+    result.largest = std::max(result.largest, norm);
+  result.last = history.empty() ? result.start : history.back();
+  return result;
+}
+
 void run(Simulation& sim, long steps, const std::function<void(const Simulation&)>& observe) {
   for (long n = 0; n < steps; ++n) {
     sim.step();

@@ -63,6 +63,11 @@ SceneParameters two_masses(double k, double b, double mass, double u0, double h,
 /// The lab grid rows×cols (structural always, shear if asked), nothing displaced.
 SceneParameters lab_grid(int rows, int cols, bool shear, double h, const std::string& integrator);
 
+/// The 10×10 test fabric: the lab grid with the fabric's three spring families (structural,
+/// shear, bend), nothing displaced, no gravity, wind or pins (they move the rest state, and the
+/// stability tests perturb a rest state).
+SceneParameters fabric_10x10(double h, const std::string& integrator);
+
 /// A run with no divergence stop: tests of instability watch the growth themselves.
 inline DivergenceLimits no_divergence_stop() {
   return {1e300, 1};
@@ -95,6 +100,20 @@ std::vector<double> strain_history(Scene scene, const Implementation& impl, long
 /// The per-step growth factor of the fastest-growing (or slowest-decaying) mode that deforms
 /// the scene: growth_factor_from_peaks over the second half of strain_history.
 double measured_growth_factor(Scene scene, const Implementation& impl, long steps);
+
+/// How a run from a tiny random deformation went (see perturbed_run).
+struct PerturbedRun {
+  double start = 0.0;    ///< strain norm at t = 0, m
+  double largest = 0.0;  ///< the largest strain norm over the run, m
+  double last = 0.0;     ///< the strain norm after the last step run, m
+  long steps = 0;        ///< steps run: fewer than asked when the strain grew past the ceiling
+};
+
+/// Runs the scene of p (at rest, every particle moved randomly by up to 1e-9 m, so that every
+/// mode is excited and the motion stays linear) at step h with `integrator` for up to `steps`
+/// steps, stopping once the strain norm exceeds `ceiling` times its start.
+PerturbedRun perturbed_run(SceneParameters p, const Implementation& impl, double h,
+                           const std::string& integrator, long steps, double ceiling = 1e3);
 
 /// Observed order p from errors e1 at step h and e2 at step h/2: log2(e1/e2).
 double observed_order(double error_h, double error_half_h);

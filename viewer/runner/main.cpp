@@ -35,6 +35,7 @@ struct Options {
   long every = 1;
   std::string csv;
   bool quiet = false;
+  bool stability = false;
 };
 
 // A number as text that reads back exactly (std::to_string would keep only six decimals).
@@ -113,7 +114,7 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
 
 // The step limit of the run's method on its scene, from the linearised equations at rest.
 void print_stability(std::ostream& out, const SceneParameters& p) {
-  if (p.rows * p.cols > 400) return;  // a dense eigen-solve: small scenes only
+  if (p.rows * p.cols > exact_particles_max) return;  // dense eigen-solves: small scenes only
   const LinearModel model = linearise_at_rest(p, reference_implementation());
   const double limit = critical_step(model, p.integrator);
   if (limit == 0.0) {
@@ -136,10 +137,63 @@ void print_stability(std::ostream& out, const SceneParameters& p) {
   out << '\n';
 }
 
+std::string_view how(LimitSource source) {
+  switch (source) {
+    case LimitSource::exact_formula:
+      return "exact (formula)";
+    case LimitSource::bisection:
+      return "exact (bisection)";
+    case LimitSource::modal_estimate:
+      return "estimate";
+    case LimitSource::no_limit:
+      return "no limit";
+    case LimitSource::not_computed:
+      break;
+  }
+  return "not computed: needs each mode's damping (an eigen-solve)";
+}
+
+// --stability: ω_max and the critical step of every method for the scene, linearised at rest.
+void print_stability_report(std::ostream& out, const SceneParameters& p,
+                            const Implementation& impl) {
+  const StabilityReport report = stability_report(p, impl);
+  out << "stability of scene " << p.name << " (" << p.rows << "x" << p.cols << " grid, "
+      << report.particles << " particles), linearised at rest:\n";
+  out << "  omega_max";
+  if (report.exact) out << " = " << report.frequency << " rad/s (eigen-solve);";
+  out << " bound " << report.frequency_bound << " rad/s (Gershgorin row sums of K/m)\n";
+  if (!report.exact)
+    out << "  (more than " << exact_particles_max
+        << " particles: no eigen-solves; the steps below are estimates from the bounds)\n";
+  out << "  critical step h_c of each integrator, against h = " << p.step << " s:\n";
+  for (const auto& [name, limit] : report.limits) {
+    std::ostringstream value;
+    if (limit.source == LimitSource::no_limit || std::isinf(limit.step))
+      value << "none";
+    else if (limit.source != LimitSource::not_computed)
+      value << limit.step << " s";
+    else
+      value << "?";
+    std::ostringstream line;
+    line << "    " << std::left << std::setw(18) << name << std::setw(14) << value.str()
+         << std::setw(19) << how(limit.source);
+    const bool known = limit.source != LimitSource::not_computed;
+    if (known && p.step >= limit.step) line << "  h EXCEEDS it: unstable";
+    if (name == p.integrator) line << "  <- the scene's integrator";
+    std::string text = line.str();
+    text.erase(text.find_last_not_of(' ') + 1);
+    out << text << '\n';
+  }
+}
+
 int run(const Options& options) {
   if (options.every < 1)
     throw InvalidParameter("--every", std::to_string(options.every), "a whole number >= 1");
   const SceneParameters p = scene_from(options);
+  if (options.stability) {
+    print_stability_report(std::cout, p, implementation_for(options, p));
+    return done;
+  }
   Simulation sim(p, implementation_for(options, p));
   std::ofstream file;
   std::ostream* csv = nullptr;
@@ -180,7 +234,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"reference", "student"}))
       ->capture_default_str();
   app.add_option("--integrator", options.integrator,
-                 "explicit-euler or verlet (default: the scene's)");
+                 "explicit-euler, symplectic-euler, verlet, velocity-verlet, rk4 or "
+                 "implicit-euler (default: the scene's)");
   app.add_option("--dt", options.dt, "the step h in seconds, the scene's `step` (default 0.01)");
   app.add_option("--duration", options.duration, "simulated seconds, the scene's `duration`");
   app.add_option("--set", options.sets, "KEY=VALUE: change a scene parameter, e.g. structural.k=40")
@@ -188,6 +243,8 @@ int main(int argc, char** argv) {
   app.add_option("--every", options.every, "write every N-th step (N >= 1)")->capture_default_str();
   app.add_option("--csv", options.csv, "FILE, or - for standard output (default: no CSV)");
   app.add_flag("--quiet", options.quiet, "no summary");
+  app.add_flag("--stability", options.stability,
+               "print omega_max and every integrator's critical step for the scene, and stop");
   app.footer(parameter_list());
   try {
     app.parse(argc, argv);

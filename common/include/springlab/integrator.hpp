@@ -1,5 +1,27 @@
 // The numerical methods, kept apart from the physical model (lecture: "separate implementation
-// for the numerical method"): an integrator only sees r, v and the acceleration function.
+// for the numerical method"). Explicit methods only call a(r, v); the implicit one also reads the
+// springs, masses and pins to linearise the spring forces. Handout page: handout/integrators.md.
+//
+// The six methods, chosen by name everywhere (runner, viewer, scene files). "Cost" counts calls
+// of a(r, v) per step; ω is a mode's angular frequency, ζ its damping ratio, ω_max the highest.
+//
+//   explicit-euler    r += h v_n, v += h a_n (the student's task 1 code). Order 1. Cost 1.
+//                     Stable per mode for h < 2ζ/ω; never when a mode is undamped.
+//   symplectic-euler  v += h a(r_n, v_n), then r += h v_{n+1}. Order 1. Cost 1.
+//                     Stable per mode for h < 2(√(1+ζ²) − ζ)/ω = 4/(c + √(c² + 4ω²)), c = 2ζω.
+//   verlet            Störmer with central-difference velocity (the student's task 4 code).
+//                     Order 2. Cost 2 without dampers, a few more with them (an iteration).
+//                     Stable for h < 2/ω_max whatever the damping.
+//   velocity-verlet   kick h/2, drift h, kick h/2 with the dampers implicit (trapezoidal).
+//                     Order 2. Cost 1 (the end-of-step acceleration is reused) plus one sparse
+//                     back-substitution. Stable for h < 2/ω_max whatever the damping.
+//   rk4               classical Runge–Kutta. Order 4. Cost 4. Stable where |R(hλ)| ≤ 1 for every
+//                     mode, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24; undamped h < 2√2/ω_max.
+//   implicit-euler    backward Euler linearised once per step (Baraff & Witkin 1998), solved by
+//                     conjugate gradients (a sparse LDLᵀ when CG stalls on a stiff system).
+//                     Order 1. Cost 1 plus assembling the spring Jacobian and a few CG iterations
+//                     (about 15 evaluations' worth on a 100×100 grid). No step limit on the
+//                     springs (it damps, ≈ hω/2 a step).
 #pragma once
 
 #include "springlab/implementation.hpp"
@@ -12,24 +34,38 @@
 
 namespace springlab {
 
+/// What an integrator may know of the model. `acceleration` is the whole physics (springs,
+/// dampers, external forces, pins); the rest describes the springs so that an implicit method can
+/// build their Jacobians. All references stay owned by the caller.
+struct Model {
+  const AccelerationFunction& acceleration;  ///< a(r, v), m/s²; zero for pinned particles
+  const std::vector<Spring>& springs;        ///< every spring and damper inside `acceleration`
+  const Eigen::VectorXd& mass;               ///< m_i, kg
+  const std::vector<bool>& pinned;           ///< pinned particles never move
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
   virtual std::string_view name() const = 0;
-  /// Advances r and v by one step h with the model a = acceleration(r, v).
-  virtual void step(const AccelerationFunction& acceleration, double h, Vectors& r, Vectors& v) = 0;
+  /// Advances r and v by one step h of the model.
+  virtual void step(const Model& model, double h, Vectors& r, Vectors& v) = 0;
   /// Forgets anything remembered from earlier steps. Call it when r or v are changed from
-  /// outside (a reset, a dragged particle); a change of h or of the particle count restarts too.
+  /// outside (a reset, a dragged particle); a change of h, of the particle count or of the
+  /// springs' dampers, masses or pins is noticed by the integrators themselves.
   virtual void restart() {}
 };
 
-/// "explicit-euler" (task 1), "verlet" (task 4).
+/// The six methods above, from the least to the most work per step.
 std::vector<std::string> integrator_names();
 
 bool is_integrator_name(std::string_view name);
 
-/// The integrator `name`, running the functions of `impl`. Throws InvalidParameter naming the
-/// known integrators for an unknown name.
+/// "one of explicit-euler, symplectic-euler, …": the allowed values, for error messages.
+std::string integrator_choices();
+
+/// The integrator `name`; explicit-euler and verlet run the functions of `impl`. Throws
+/// InvalidParameter naming the known integrators for an unknown name.
 std::unique_ptr<Integrator> make_integrator(std::string_view name, const Implementation& impl);
 
 }  // namespace springlab

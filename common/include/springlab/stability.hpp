@@ -1,6 +1,7 @@
 // Stability theory for a scene: the linearised equations of motion about a configuration and the
-// step limits of the methods that follow from them (handout equations (1.6) and (4.5)). Dense
-// eigen-solves: meant for small scenes (up to a few hundred particles).
+// step limits of the methods that follow from them (handout equations (1.6) and (4.5), and
+// handout/integrators.md). Dense eigen-solves, meant for small scenes (exact_particles_max); the
+// frequency bound works for any size.
 #pragma once
 
 #include "springlab/implementation.hpp"
@@ -8,6 +9,7 @@
 #include "springlab/types.hpp"
 
 #include <Eigen/Core>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -40,10 +42,75 @@ double explicit_euler_critical_step(const LinearModel& model);
 /// 2/ω_max, the limit of Störmer–Verlet with a central-difference velocity (equation (4.5)), s.
 double verlet_critical_step(const LinearModel& model);
 
-/// The critical step of the integrator `name` (integrator.hpp) for this model, s.
+/// An upper bound of ω_max without an eigen-solve, for a scene of any size, rad/s. Every
+/// eigenvalue ω² of M⁻¹K lies in a Gershgorin disc of its rows, so ω_max² ≤ max_i Σ_j |K_ij| / m_i
+/// over the free coordinates: one pass over the springs. Exact for one spring, at most about a
+/// third high on the lab grids.
+double highest_frequency_bound(const std::vector<Spring>& springs, const Vectors& r,
+                               const Eigen::VectorXd& mass, const std::vector<bool>& pinned);
+
+/// The same kind of bound for the damping: every c of a mode is at most max_i Σ_j |C_ij| / m_i,
+/// 1/s.
+double damping_rate_bound(const std::vector<Spring>& springs, const Eigen::VectorXd& mass,
+                          const std::vector<bool>& pinned);
+
+/// The matrix by which one step of `integrator` multiplies a small deviation from the state the
+/// model was linearised about, on the deformation modes: rigid translations (the null space of
+/// K + C) are removed first, as they give an eigenvalue of exactly 1 that is not an instability.
+/// The state is (δr_n, δv_n), for verlet (δr_n, δr_{n-1}).
+Eigen::MatrixXd step_matrix(const LinearModel& model, std::string_view integrator, double h);
+
+/// The spectral radius of step_matrix: the factor by which the worst small deviation grows (> 1)
+/// or shrinks (< 1) per step.
+double step_growth_factor(const LinearModel& model, std::string_view integrator, double h);
+
+/// The largest h with step_growth_factor ≤ 1, found by bisection to a relative 1e-9, s:
+/// exact for any damping. About 40 dense eigen-solves of step_matrix: small scenes only.
+/// 0 when no h > 0 is stable, infinity for implicit-euler.
+double critical_step_by_bisection(const LinearModel& model, std::string_view integrator);
+
+/// How critical_step obtains its value for a method.
+enum class LimitSource { exact_formula, bisection, modal_estimate, no_limit, not_computed };
+
+/// Free particles up to which critical_step uses bisection for symplectic-euler.
+inline constexpr int bisection_particles_max = 25;
+/// Particles up to which stability_report solves eigenproblems (dense, O(n³)).
+inline constexpr int exact_particles_max = 200;
+
+struct CriticalStep {
+  double step = 0.0;  ///< h_c, s: 0 never stable, infinity never unstable
+  LimitSource source = LimitSource::not_computed;
+};
+
+/// The critical step h_c of the integrator `name` (integrator.hpp) for this model, s:
+///   explicit-euler, rk4  exact per mode from the system eigenvalues λ: their step matrices are
+///                        polynomials in hA, so each mode is multiplied by 1 + hλ or R(hλ);
+///   verlet, velocity-verlet  2/ω_max, exact for any damping;
+///   symplectic-euler     by bisection up to bisection_particles_max free particles; beyond, per
+///                        mode 4/(c + √(c² + 4ω²)) with the modal damping c = φᵀCφ (exact when
+///                        the damping is proportional to the stiffness, close on the lab grids);
+///   implicit-euler       infinity.
+CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator);
+
+/// critical_step_of(model, integrator).step.
 double critical_step(const LinearModel& model, std::string_view integrator);
 
 /// The model of scene p at rest (no displacement), its springs built by impl.
 LinearModel linearise_at_rest(const SceneParameters& p, const Implementation& impl);
+
+/// What `springlab-run --stability` prints for a scene, linearised at rest.
+struct StabilityReport {
+  int particles = 0;
+  double frequency_bound = 0.0;  ///< rad/s, highest_frequency_bound
+  bool exact = false;            ///< whether the scene was small enough for eigen-solves
+  double frequency = 0.0;        ///< ω_max, rad/s, when exact
+  struct Limit {
+    std::string integrator;
+    CriticalStep critical;  ///< when not exact: estimates from the bounds (see stability.cpp)
+  };
+  std::vector<Limit> limits;  ///< every integrator, in integrator_names() order
+};
+
+StabilityReport stability_report(const SceneParameters& p, const Implementation& impl);
 
 }  // namespace springlab

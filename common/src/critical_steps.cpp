@@ -1,0 +1,234 @@
+// The step limits of all six integrators (stability.hpp): step matrices of the linear model,
+// bisection on their spectral radius, the per-mode formulas and the report of the runner.
+#include "springlab/errors.hpp"
+#include "springlab/integrator.hpp"
+#include "springlab/scene.hpp"
+#include "springlab/stability.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <cmath>
+#include <complex>
+#include <limits>
+
+namespace springlab {
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+// System eigenvalues this much smaller than the largest belong to rigid motions.
+constexpr double rigid_tolerance = 1e-6;
+
+// K and C scaled by M^(-1/2) on both sides (unit masses), restricted to the complement of the
+// null space of K + C: the translations, which neither springs nor dampers resist. That
+// complement is invariant under both (they are symmetric), so the deformation modes keep their
+// dynamics exactly.
+struct Deformation {
+  Eigen::MatrixXd k, c;
+};
+
+Deformation deformation_modes(const LinearModel& model) {
+  const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd k = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
+  const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(k + c);
+  const Eigen::VectorXd& values = solver.eigenvalues();
+  const double threshold = 1e-9 * std::max(values.cwiseAbs().maxCoeff(), 1e-300);
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index i = 0; i < values.size(); ++i)
+    if (values[i] > threshold) kept.push_back(i);
+  const Eigen::MatrixXd basis = solver.eigenvectors()(Eigen::all, kept);
+  return {basis.transpose() * k * basis, basis.transpose() * c * basis};
+}
+
+// One step of each method applied to (x, v) of x'' = -K x - C v (unit masses), as a matrix.
+Eigen::MatrixXd step_matrix_of(const Deformation& d, std::string_view integrator, double h) {
+  const Eigen::Index n = d.k.rows();
+  const Eigen::MatrixXd id = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  a.topRightCorner(n, n) = id;
+  a.bottomLeftCorner(n, n) = -d.k;
+  a.bottomRightCorner(n, n) = -d.c;
+  Eigen::MatrixXd s(2 * n, 2 * n);
+  if (integrator == "explicit-euler") {
+    s = Eigen::MatrixXd::Identity(2 * n, 2 * n) + h * a;
+  } else if (integrator == "rk4") {
+    const Eigen::MatrixXd z = h * a;
+    const Eigen::MatrixXd id2 = Eigen::MatrixXd::Identity(2 * n, 2 * n);
+    s = id2 + z * (id2 + z * (id2 / 2.0 + z * (id2 / 6.0 + z / 24.0)));
+  } else if (integrator == "symplectic-euler") {  // v' = v + h a(x, v), x' = x + h v'
+    const Eigen::MatrixXd kick = id - h * d.c;
+    s << id - h * h * d.k, h * kick, -h * d.k, kick;
+  } else if (integrator == "verlet") {  // (I + hC/2) x_{n+1} = (2I - h²K) x_n - (I - hC/2) x_{n-1}
+    const Eigen::PartialPivLU<Eigen::MatrixXd> p(id + 0.5 * h * d.c);
+    s << p.solve(2.0 * id - h * h * d.k), p.solve(-(id - 0.5 * h * d.c)), id,
+        Eigen::MatrixXd::Zero(n, n);
+  } else if (integrator == "velocity-verlet") {
+    Eigen::MatrixXd half(n, 2 * n);  // v_{n+1/2}
+    half << -0.5 * h * d.k, id - 0.5 * h * d.c;
+    Eigen::MatrixXd x(n, 2 * n);  // r_{n+1}
+    x << id, Eigen::MatrixXd::Zero(n, n);
+    x += h * half;
+    // (I + hC/2) v_{n+1} = v_{n+1/2} - h/2 K r_{n+1}
+    s << x,
+        Eigen::PartialPivLU<Eigen::MatrixXd>(id + 0.5 * h * d.c).solve(half - 0.5 * h * d.k * x);
+  } else if (integrator == "implicit-euler") {  // (I + hC + h²K) v' = v - hK x, x' = x + h v'
+    Eigen::MatrixXd rhs(n, 2 * n);
+    rhs << -h * d.k, id;
+    const Eigen::MatrixXd v =
+        Eigen::PartialPivLU<Eigen::MatrixXd>(id + h * d.c + h * h * d.k).solve(rhs);
+    Eigen::MatrixXd x(n, 2 * n);
+    x << id, Eigen::MatrixXd::Zero(n, n);
+    s << x + h * v, v;
+  } else {
+    throw InvalidParameter("integrator", "\"" + std::string(integrator) + "\"",
+                           integrator_choices());
+  }
+  return s;
+}
+
+double spectral_radius(const Eigen::MatrixXd& s) {
+  if (s.size() == 0) return 0.0;
+  return Eigen::EigenSolver<Eigen::MatrixXd>(s, false).eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// RK4's growth factor R(z) and the largest t with |R(t·direction)| ≤ 1 on all of [0, t]: a scan
+// (the region reaches |z| < 3.1) and a bisection of the first crossing.
+double rk4_reach(std::complex<double> direction) {
+  const auto growth = [&](double t) {
+    const std::complex<double> z = t * direction;
+    return std::abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))));
+  };
+  constexpr double scan = 1.0 / 256;
+  double t = 0.0;
+  while (t < 4.0 && growth(t + scan) <= 1.0 + 1e-12)
+    t += scan;
+  if (t >= 4.0) return infinity;
+  double lo = t, hi = t + scan;
+  for (int i = 0; i < 60; ++i)
+    (growth(0.5 * (lo + hi)) <= 1.0 + 1e-12 ? lo : hi) = 0.5 * (lo + hi);
+  return lo;
+}
+
+double rk4_critical_step(const LinearModel& model) {
+  const Eigen::VectorXcd lambda = system_eigenvalues(model);
+  const double largest = lambda.cwiseAbs().maxCoeff();
+  double limit = infinity;
+  for (const auto& l : lambda)
+    if (std::abs(l) > rigid_tolerance * largest)
+      limit = std::min(limit, rk4_reach(l / std::abs(l)) / std::abs(l));
+  return limit;
+}
+
+// Symplectic Euler per mode of x'' = -ω² x - c x': stable for h ≤ 4/(c + √(c² + 4ω²)) (the
+// Jury conditions of its 2×2 step matrix; 2/ω undamped, 2/c for a mode with ω = 0).
+double symplectic_euler_mode_limit(double w2, double c) {
+  return 4.0 / (c + std::sqrt(c * c + 4.0 * w2));
+}
+
+// Per mode of the undamped problem, with each mode's own damping c = φᵀCφ.
+double symplectic_euler_modal_estimate(const LinearModel& model) {
+  const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd k = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
+  const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(k);
+  const Eigen::VectorXd damping =
+      (solver.eigenvectors().transpose() * c * solver.eigenvectors()).diagonal();
+  const double largest = std::max(solver.eigenvalues().maxCoeff(), damping.maxCoeff());
+  double limit = infinity;
+  for (Eigen::Index i = 0; i < damping.size(); ++i) {
+    const double w2 = std::max(0.0, solver.eigenvalues()[i]);
+    if (w2 + damping[i] > 1e-9 * largest)
+      limit = std::min(limit, symplectic_euler_mode_limit(w2, damping[i]));
+  }
+  return limit;
+}
+
+int free_particles(const LinearModel& model) {
+  return int(model.mass.size() / 2);
+}
+
+}  // namespace
+
+Eigen::MatrixXd step_matrix(const LinearModel& model, std::string_view integrator, double h) {
+  return step_matrix_of(deformation_modes(model), integrator, h);
+}
+
+double step_growth_factor(const LinearModel& model, std::string_view integrator, double h) {
+  return spectral_radius(step_matrix(model, integrator, h));
+}
+
+double critical_step_by_bisection(const LinearModel& model, std::string_view integrator) {
+  if (integrator == "implicit-euler") return infinity;
+  const Deformation modes = deformation_modes(model);
+  const auto stable = [&](double h) {
+    return spectral_radius(step_matrix_of(modes, integrator, h)) <= 1.0 + 1e-9;
+  };
+  // Bracket from 2/ω_max, the scale of every explicit method's limit, by doubling or halving.
+  double hi = 2.0 / std::max(highest_frequency(model), 1e-300);
+  int doublings = 0;
+  while (stable(hi))
+    if (hi *= 2.0; ++doublings > 60) return infinity;
+  double lo = hi / 2.0;
+  int halvings = 0;
+  while (!stable(lo))
+    if (hi = lo, lo /= 2.0; ++halvings > 60) return 0.0;
+  while (hi - lo > 1e-9 * lo)
+    (stable(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
+  return lo;
+}
+
+CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator) {
+  if (integrator == "explicit-euler")
+    return {explicit_euler_critical_step(model), LimitSource::exact_formula};
+  if (integrator == "verlet" || integrator == "velocity-verlet")
+    return {verlet_critical_step(model), LimitSource::exact_formula};
+  if (integrator == "rk4") return {rk4_critical_step(model), LimitSource::exact_formula};
+  if (integrator == "implicit-euler") return {infinity, LimitSource::no_limit};
+  if (integrator == "symplectic-euler") {
+    if (free_particles(model) <= bisection_particles_max)
+      return {critical_step_by_bisection(model, integrator), LimitSource::bisection};
+    return {symplectic_euler_modal_estimate(model), LimitSource::modal_estimate};
+  }
+  throw InvalidParameter("integrator", "\"" + std::string(integrator) + "\"", integrator_choices());
+}
+
+double critical_step(const LinearModel& model, std::string_view integrator) {
+  return critical_step_of(model, integrator).step;
+}
+
+StabilityReport stability_report(const SceneParameters& p, const Implementation& impl) {
+  SceneParameters still = p;
+  still.displacement = Vec2::Zero();
+  const Scene scene = build_scene(still, impl);
+  const Particles& particles = scene.particles;
+  StabilityReport report;
+  report.particles = particles.size();
+  report.frequency_bound =
+      highest_frequency_bound(scene.springs, particles.position, particles.mass, particles.pinned);
+  report.exact = report.particles <= exact_particles_max;
+  if (report.exact) {
+    const LinearModel model =
+        linearise(scene.springs, particles.position, particles.mass, particles.pinned);
+    report.frequency = highest_frequency(model);
+    for (const std::string& name : integrator_names())
+      report.limits.push_back({name, critical_step_of(model, name)});
+    return report;
+  }
+  // Too large for eigen-solves: lower estimates from the bounds. ω ≤ ω_bound and c ≤ c_bound
+  // for every mode, and each per-mode limit falls as ω and c grow.
+  const double w = report.frequency_bound;
+  const double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
+  const auto estimate = [](double h) { return CriticalStep{h, LimitSource::modal_estimate}; };
+  for (const std::string& name : integrator_names()) {
+    CriticalStep limit;  // explicit-euler: its limit hangs on each mode's damping ratio
+    if (name == "symplectic-euler") limit = estimate(symplectic_euler_mode_limit(w * w, c));
+    if (name == "verlet" || name == "velocity-verlet") limit = estimate(2.0 / w);
+    if (name == "rk4") limit = estimate(2.0 * std::sqrt(2.0) / w);
+    if (name == "implicit-euler") limit = {infinity, LimitSource::no_limit};
+    report.limits.push_back({name, limit});
+  }
+  return report;
+}
+
+}  // namespace springlab

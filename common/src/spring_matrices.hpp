@@ -1,0 +1,56 @@
+// The derivatives of the spring and damper forces (lecture: Hooke + damper F = -b(v_p - v_q)),
+// shared by the implicit integrators and the stability theory. Private to the core library.
+#pragma once
+
+#include "springlab/types.hpp"
+
+#include <Eigen/SparseCore>
+
+#include <vector>
+
+namespace springlab::detail {
+
+/// B = k [ûûᵀ + (1 − ℓ0/L)(I − ûûᵀ)], the Hessian of ½k(L − ℓ0)² with respect to d = r_p − r_q,
+/// so ∂F_pq/∂r_p = −B and ∂F_pq/∂r_q = +B. With `clamp_compressed` the transverse factor
+/// (1 − ℓ0/L), negative for a compressed spring, is raised to 0: B stays positive semi-definite,
+/// which keeps the implicit system positive definite. L = 0 gives B = 0: the kit's spring force is
+/// zero there (no direction to push along), and so is its derivative.
+Eigen::Matrix2d stiffness_block(const Vec2& d, double k, double rest_length, bool clamp_compressed);
+
+/// The free (unpinned) particles numbered 0 … size()-1 in their original order.
+struct FreeParticles {
+  explicit FreeParticles(const std::vector<bool>& pinned);
+  std::vector<int> index;     ///< particle → free index, -1 if pinned
+  std::vector<int> particle;  ///< free index → particle
+  int size() const { return int(particle.size()); }
+};
+
+/// Σ over dampers of b (e_p − e_q)(e_p − e_q)ᵀ on the free particles: the damping matrix of one
+/// coordinate (dampers act alike on x and y). A damper to a pinned particle adds only to the
+/// free end's diagonal, as the pinned end never moves.
+Eigen::SparseMatrix<double> scalar_damping(const std::vector<Spring>& springs,
+                                           const FreeParticles& free);
+
+}  // namespace springlab::detail
+
+namespace springlab {
+struct Model;
+}
+
+namespace springlab::detail {
+
+/// Remembers what the damping and mass matrices of a model were built from (each spring's ends
+/// and b, the masses, the pins), so an integrator can rebuild them when the viewer changes any.
+class ModelFingerprint {
+ public:
+  /// True the first time and whenever `model` differs from the last call's; then remembers it.
+  bool changed(const Model& model);
+
+ private:
+  bool known_ = false;
+  std::vector<Spring> springs_;
+  Eigen::VectorXd mass_;
+  std::vector<bool> pinned_;
+};
+
+}  // namespace springlab::detail

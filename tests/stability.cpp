@@ -1,0 +1,268 @@
+// The step limits of the six integrators, measured against theory (handout/integrators.md): the
+// frequency bound, the critical steps from formulas against bisection on the step matrices, and
+// runs on two masses, the 3x3 lab grid and the 10x10 fabric just below and just above each limit.
+#include "springlab/stability.hpp"
+#include "lab_testing.hpp"
+#include "springlab/integrator.hpp"
+#include "springlab/this_implementation.hpp"
+
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+using namespace springlab;
+using namespace springlab::testing;
+using Catch::Matchers::WithinAbs;
+using Catch::Matchers::WithinRel;
+
+namespace {
+
+const SceneParameters lab;  // the lab's values
+
+SceneParameters scene_named(const std::string& name) {
+  if (name == "two masses")
+    return two_masses(lab.structural.k, lab.structural.b, lab.mass, 0.0, lab.step, "rk4");
+  if (name == "3x3 grid") return lab_grid(3, 3, true, lab.step, "rk4");
+  return fabric_10x10(lab.step, "rk4");
+}
+
+// Linearised once per scene: the 10x10 eigen-solves are the slow part of these tests.
+const LinearModel& model_of(const std::string& scene) {
+  static std::map<std::string, LinearModel> models;
+  auto found = models.find(scene);
+  if (found == models.end())
+    found = models.emplace(scene, linearise_at_rest(scene_named(scene), implementation())).first;
+  return found->second;
+}
+
+const CriticalStep& limit_of(const std::string& scene, const std::string& integrator) {
+  static std::map<std::string, CriticalStep> limits;
+  auto found = limits.find(scene + "/" + integrator);
+  if (found == limits.end())
+    found = limits.emplace(scene + "/" + integrator, critical_step_of(model_of(scene), integrator))
+                .first;
+  return found->second;
+}
+
+// The mode that explicit Euler amplifies most at step h: the eigenvector of
+// A = [[0, I], [-M^-1 K, -M^-1 C]] with the largest |1 + h lambda|, rigid motions (lambda = 0)
+// left out, as a state (x, v) scaled to 1e-9 m, and that growth per step. Found once per scene:
+// the 10x10 eigen-solve is the slow part of the test.
+struct CriticalMode {
+  Eigen::VectorXd state;
+  double growth;
+};
+
+const CriticalMode& critical_mode(const std::string& name, double h) {
+  static std::map<std::string, CriticalMode> modes;
+  auto found = modes.find(name);
+  if (found != modes.end()) return found->second;
+  const LinearModel& model = model_of(name);
+  const Eigen::Index n = model.mass.size();
+  const Eigen::VectorXd inverse_mass = model.mass.cwiseInverse();
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  a.topRightCorner(n, n).setIdentity();
+  a.bottomLeftCorner(n, n) = -(inverse_mass.asDiagonal() * model.stiffness);
+  a.bottomRightCorner(n, n) = -(inverse_mass.asDiagonal() * model.damping);
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(a);
+  const Eigen::VectorXcd& lambda = solver.eigenvalues();
+  const double largest = lambda.cwiseAbs().maxCoeff();
+  Eigen::Index worst = 0;
+  for (Eigen::Index i = 0; i < lambda.size(); ++i)
+    if (std::abs(lambda[i]) > 1e-6 * largest &&
+        std::abs(1.0 + h * lambda[i]) > std::abs(1.0 + h * lambda[worst]))
+      worst = i;
+  const Eigen::VectorXd mode = solver.eigenvectors().col(worst).real();
+  const CriticalMode critical{1e-9 * mode / mode.head(n).cwiseAbs().maxCoeff(),
+                              std::abs(1.0 + h * lambda[worst])};
+  return modes.emplace(name, critical).first->second;
+}
+
+// The scene at rest (no pins: every coordinate is free) plus the state of a mode.
+Scene in_mode(const std::string& name, const Eigen::VectorXd& state) {
+  Scene scene = build_scene(scene_named(name), implementation());
+  const Eigen::Index n = state.size() / 2;
+  scene.particles.position.reshaped() += state.head(n);
+  scene.particles.velocity.reshaped() = state.tail(n);
+  scene.parameters.integrator = "explicit-euler";
+  return scene;
+}
+
+const std::vector<std::string> explicit_methods{"explicit-euler", "symplectic-euler", "verlet",
+                                                "velocity-verlet", "rk4"};
+
+}  // namespace
+
+TEST_CASE("Stability: the frequency bound needs no eigen-solve and lies above omega_max",
+          "[stability][bound]") {
+  const std::string scene = GENERATE("two masses", "3x3 grid", "10x10 fabric");
+  const Scene built = build_scene(scene_named(scene), implementation());
+  const Particles& p = built.particles;
+  const double bound = highest_frequency_bound(built.springs, p.position, p.mass, p.pinned);
+  const double exact = highest_frequency(model_of(scene));
+  CAPTURE(scene, bound, exact);
+  CHECK(bound >= exact * (1 - 1e-12));
+  CHECK(bound <= 1.4 * exact);  // row sums of K: tight on the lab grids
+  if (scene == "two masses")    // one spring: the bound is exact, sqrt(2k/m)
+    CHECK_THAT(bound, WithinRel(TwoMassExact{lab.structural.k, 0, lab.mass, 0}.omega(), 1e-12));
+}
+
+TEST_CASE("Stability: a pinned particle's frequency bound counts only its free neighbours",
+          "[stability][bound]") {
+  // One mass on a spring to a pinned one: omega = sqrt(k/m), the bound gives exactly that.
+  Scene scene = build_scene(scene_named("two masses"), implementation());
+  scene.particles.pinned[0] = true;
+  const Particles& p = scene.particles;
+  CHECK_THAT(highest_frequency_bound(scene.springs, p.position, p.mass, p.pinned),
+             WithinRel(std::sqrt(lab.structural.k / lab.mass), 1e-12));
+}
+
+TEST_CASE("Stability: the two-mass limits are the closed forms of the notes",
+          "[stability][theory]") {
+  const TwoMassExact exact{lab.structural.k, lab.structural.b, lab.mass, 0.0};
+  const double w = exact.omega(), z = exact.zeta();
+  const LinearModel& model = model_of("two masses");
+  CHECK_THAT(critical_step(model, "explicit-euler"), WithinRel(2 * z / w, 1e-9));
+  CHECK_THAT(critical_step(model, "symplectic-euler"),
+             WithinRel(2 * (std::sqrt(1 + z * z) - z) / w, 1e-8));
+  CHECK_THAT(critical_step(model, "verlet"), WithinRel(2 / w, 1e-12));
+  CHECK_THAT(critical_step(model, "velocity-verlet"), WithinRel(2 / w, 1e-12));
+  CHECK(std::isinf(critical_step(model, "implicit-euler")));
+  // RK4 without damping: R(i y) has modulus 1 at y = 2 sqrt(2).
+  const Scene undamped =
+      build_scene(two_masses(lab.structural.k, 0.0, lab.mass, 0.0, 0.01, "rk4"), implementation());
+  const LinearModel free = linearise(undamped.springs, undamped.particles.position,
+                                     undamped.particles.mass, undamped.particles.pinned);
+  CHECK_THAT(critical_step(free, "rk4"), WithinRel(2 * std::sqrt(2.0) / w, 1e-9));
+  CHECK(critical_step(free, "explicit-euler") == 0.0);  // never stable without damping
+}
+
+TEST_CASE("Stability: the formulas agree with bisection on each method's step matrix",
+          "[stability][theory]") {
+  // The step matrices are built independently of the formulas (from the update equations);
+  // the spectral radius reaching 1 is the definition of the limit.
+  const std::string scene = GENERATE("two masses", "3x3 grid");
+  const std::string method = GENERATE(from_range(explicit_methods));
+  const double formula = critical_step(model_of(scene), method);
+  const double bisection = critical_step_by_bisection(model_of(scene), method);
+  CAPTURE(scene, method, formula, bisection);
+  CHECK_THAT(formula, WithinRel(bisection, 1e-6));
+  CHECK(step_growth_factor(model_of(scene), method, 0.99 * formula) <= 1.0 + 1e-9);
+  CHECK(step_growth_factor(model_of(scene), method, 1.01 * formula) > 1.0 + 1e-6);
+}
+
+TEST_CASE("Stability: the 10x10 symplectic Euler estimate is close to the exact limit",
+          "[stability][theory]") {
+  // The per-mode estimate uses modal damping; the lab's damping is not proportional to the
+  // stiffness, so it is not exact, but it must stay well inside the +-10 % the runs test.
+  const LinearModel& model = model_of("10x10 fabric");
+  const CriticalStep estimate = limit_of("10x10 fabric", "symplectic-euler");
+  REQUIRE(estimate.source == LimitSource::modal_estimate);
+  const double below = step_growth_factor(model, "symplectic-euler", 0.97 * estimate.step);
+  const double above = step_growth_factor(model, "symplectic-euler", 1.03 * estimate.step);
+  CAPTURE(estimate.step, below, above);
+  CHECK(below <= 1.0 + 1e-9);
+  CHECK(above > 1.0);
+}
+
+TEST_CASE("Stability: implicit Euler's step matrix never grows, even at h = 1 s",
+          "[stability][theory]") {
+  const std::string scene = GENERATE("two masses", "3x3 grid");
+  for (double h : {0.01, 0.1, 1.0, 100.0}) {
+    CAPTURE(scene, h);
+    CHECK(step_growth_factor(model_of(scene), "implicit-euler", h) <= 1.0 + 1e-9);
+  }
+}
+
+TEST_CASE("Stability: stable at 0.9 h_c and unstable at 1.1 h_c, on every scene",
+          "[stability][runs]") {
+  // Deformations of 1e-9 m keep the motion linear; "unstable" is a growth of 1000 times
+  // within the run, "stable" no growth beyond 10 times (rounding and transients) all along.
+  const std::string scene = GENERATE("two masses", "3x3 grid", "10x10 fabric");
+  const std::string method = GENERATE("symplectic-euler", "verlet", "velocity-verlet", "rk4");
+  const double factor = GENERATE(0.9, 1.1);
+  const double limit = limit_of(scene, method).step;
+  const long steps = 1500;
+  const PerturbedRun run =
+      perturbed_run(scene_named(scene), implementation(), factor * limit, method, steps);
+  CAPTURE(scene, method, limit, factor, run.steps, run.start, run.largest, run.last);
+  if (factor < 1.0) {
+    CHECK(run.steps == steps);
+    CHECK(run.largest <= 10.0 * run.start);
+  } else {
+    CHECK(run.steps < steps);
+  }
+}
+
+TEST_CASE("Stability: explicit Euler's critical mode decays at 0.9 h_c and grows at 1.1 h_c",
+          "[stability][runs][slow]") {
+  // Beyond its limit explicit Euler's worst mode grows very slowly (on the 10x10 fabric by
+  // about 4e-5 a step), so the run starts in that mode, the eigenvector of the system matrix
+  // with the largest |1 + h lambda|, and lasts until theory predicts a fourfold growth at
+  // 1.1 h_c (and a threefold decay at 0.9 h_c).
+  const std::string scene = GENERATE("two masses", "3x3 grid", "10x10 fabric");
+  const double factor = GENERATE(0.9, 1.1);
+  const double limit = limit_of(scene, "explicit-euler").step;
+  const CriticalMode& mode = critical_mode(scene, 1.1 * limit);
+  const double growth = mode.growth;
+  REQUIRE(growth > 1.0);
+  const long steps = std::lround(std::log(4.0) / std::log(growth));
+  Scene start = in_mode(scene, mode.state);
+  start.parameters.step = factor * limit;
+  const std::vector<double> history =
+      strain_history(std::move(start), implementation(), steps, 0.0, 1e-3);
+  REQUIRE(history.size() == std::size_t(steps));
+  const auto tenth = std::ptrdiff_t(steps / 10);
+  const double early = *std::max_element(history.begin(), history.begin() + tenth);
+  const double late = *std::max_element(history.end() - tenth, history.end());
+  CAPTURE(scene, limit, factor, growth, steps, early, late);
+  if (factor < 1.0)
+    CHECK(late < 0.6 * early);
+  else
+    CHECK(late > 2.0 * early);
+}
+
+TEST_CASE("Stability: implicit Euler stays bounded at h = 1 s on every scene",
+          "[stability][runs]") {
+  const std::string scene = GENERATE("two masses", "3x3 grid", "10x10 fabric");
+  SceneParameters p = scene_named(scene);
+  p.displacement = Vec2(0.2, -0.2);  // a visible start: the displaced particle is the last one
+  p.displaced = std::to_string(p.rows * p.cols - 1);
+  p.step = 1.0;
+  p.integrator = "implicit-euler";
+  Simulation sim(p, implementation());
+  const double start = sim.diagnostics().total();
+  double largest = start;
+  REQUIRE_NOTHROW(run(sim, 100, [&](const Simulation& s) {
+    largest = std::max(largest, s.diagnostics().total());
+  }));
+  CAPTURE(scene, start, largest, sim.diagnostics().total());
+  CHECK(largest <= start * (1 + 1e-9));
+  CHECK(sim.diagnostics().total() < 1e-3 * start);  // backward Euler damps strongly at large h
+}
+
+TEST_CASE("Stability: beyond the limit a deformation grows at the step matrix's spectral radius",
+          "[stability][runs]") {
+  // The per-step growth of the strain, fitted over the second half of a run from 1e-9 m to
+  // 1e-3 m, against the largest |eigenvalue| of the method's step matrix at the same h.
+  const std::string scene = GENERATE("two masses", "3x3 grid");
+  const std::string method = GENERATE(from_range(explicit_methods));
+  const double h = (method == "explicit-euler" ? 3.0 : 1.02) * limit_of(scene, method).step;
+  SceneParameters p = scene_named(scene);
+  p.step = h;
+  p.integrator = method;
+  const std::vector<double> history =
+      strain_history(perturbed_at_rest(p, implementation(), 1e-9, 5), implementation(), 20000);
+  REQUIRE(history.size() >= 20);
+  double sn = 0, sy = 0, snn = 0, sny = 0, count = 0;
+  for (std::size_t n = history.size() / 2; n < history.size(); ++n) {
+    const double x = double(n), y = std::log(history[n]);
+    sn += x, sy += y, snn += x * x, sny += x * y, count += 1;
+  }
+  const double measured = std::exp((count * sny - sn * sy) / (count * snn - sn * sn));
+  const double predicted = step_growth_factor(model_of(scene), method, h);
+  CAPTURE(scene, method, h, history.size(), measured, predicted);
+  CHECK_THAT(measured, WithinRel(predicted, 0.02));
+}
