@@ -1,0 +1,177 @@
+#include "gui/scene_drawing.hpp"
+
+#include <SFML/Graphics/VertexArray.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace springlab::view {
+namespace {
+
+// Thick lines are quads; beyond this many springs hairlines are cheaper and still readable.
+constexpr std::size_t thick_spring_limit = 5000;
+
+sf::Color mix(sf::Color a, sf::Color b, double t) {
+  const auto channel = [t](sf::Uint8 x, sf::Uint8 y) {
+    return static_cast<sf::Uint8>(std::lround(double(x) + (double(y) - double(x)) * t));
+  };
+  return {channel(a.r, b.r), channel(a.g, b.g), channel(a.b, b.b), channel(a.a, b.a)};
+}
+
+sf::Color strain_colour(const Spring& s, const Vectors& r, double scale) {
+  const double strain = ((r.col(s.p) - r.col(s.q)).norm() - s.rest_length) / s.rest_length;
+  const double t = std::clamp(strain / scale, -1.0, 1.0);
+  return t >= 0 ? mix(colour::at_rest, colour::stretched, t)
+                : mix(colour::at_rest, colour::compressed, -t);
+}
+
+sf::Color faded(sf::Color c, bool ghost) {
+  return ghost ? sf::Color(colour::ghost.r, colour::ghost.g, colour::ghost.b, 110) : c;
+}
+
+bool finite(sf::Vector2f p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+// A segment `width` pixels wide as two triangles.
+void add_segment(sf::VertexArray& triangles, sf::Vector2f a, sf::Vector2f b, float width,
+                 sf::Color c) {
+  const sf::Vector2f d = b - a;
+  const float length = std::hypot(d.x, d.y);
+  if (!(length > 0.0f)) return;
+  const sf::Vector2f n(-d.y / length * width / 2, d.x / length * width / 2);
+  for (sf::Vector2f p : {a + n, a - n, b + n, b + n, a - n, b - n})
+    triangles.append(sf::Vertex(p, c));
+}
+
+// A regular polygon around `centre`: a dot (8 corners) or a square (4 corners, turned 45°).
+void add_polygon(sf::VertexArray& triangles, sf::Vector2f centre, float radius, int corners,
+                 sf::Color c) {
+  const double turn = corners == 4 ? std::numbers::pi / 4 : 0.0;
+  for (int k = 0; k < corners; ++k) {
+    const double a0 = turn + 2 * std::numbers::pi * k / corners;
+    const double a1 = turn + 2 * std::numbers::pi * (k + 1) / corners;
+    triangles.append(sf::Vertex(centre, c));
+    triangles.append(sf::Vertex(
+        centre + sf::Vector2f(float(std::cos(a0)) * radius, float(std::sin(a0)) * radius), c));
+    triangles.append(sf::Vertex(
+        centre + sf::Vector2f(float(std::cos(a1)) * radius, float(std::sin(a1)) * radius), c));
+  }
+}
+
+void add_arrow(sf::VertexArray& triangles, sf::Vector2f from, sf::Vector2f to, float width,
+               sf::Color c) {
+  const sf::Vector2f d = to - from;
+  const float length = std::hypot(d.x, d.y);
+  if (!(length > 2.0f)) return;
+  const sf::Vector2f u = d / length, n(-u.y, u.x);
+  const float head = std::min(length / 2, 4.0f * width + 4.0f);
+  const sf::Vector2f base = to - u * head;
+  add_segment(triangles, from, base, width, c);
+  for (sf::Vector2f p : {to, base + n * (head / 2), base - n * (head / 2)})
+    triangles.append(sf::Vertex(p, c));
+}
+
+// The spring and damper force on particle `at` from spring s (N).
+Vec2 force_of(const Implementation& impl, const Spring& s, const Particles& p, int at) {
+  const int other = s.p == at ? s.q : s.p;
+  return impl.spring_force(p.position.col(at), p.position.col(other), s.k, s.rest_length) +
+         impl.damper_force(p.velocity.col(at), p.velocity.col(other), s.b);
+}
+
+}  // namespace
+
+float particle_radius(const Camera& camera, double spacing) {
+  return std::clamp(static_cast<float>(0.1 * spacing * camera.pixels_per_metre()), 2.5f, 11.0f);
+}
+
+void draw_scene(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
+                const DrawOptions& options) {
+  const Particles& particles = sim.particles();
+  const Vectors& r = particles.position;
+  const auto& springs = sim.scene().springs;
+  const bool thick = springs.size() <= thick_spring_limit;
+  const float width = std::clamp(particle_radius(camera, sim.parameters().spacing) / 3, 1.0f, 3.0f);
+  sf::VertexArray lines(thick ? sf::Triangles : sf::Lines);
+  for (const Spring& s : springs) {
+    if (options.hidden_families.count(int(s.family))) continue;
+    const sf::Vector2f a = camera.to_screen(r.col(s.p)), b = camera.to_screen(r.col(s.q));
+    if (!finite(a) || !finite(b)) continue;
+    const sf::Color c = faded(strain_colour(s, r, options.strain_scale), options.ghost);
+    if (thick) {
+      add_segment(lines, a, b, width, c);
+    } else {
+      lines.append(sf::Vertex(a, c));
+      lines.append(sf::Vertex(b, c));
+    }
+  }
+  target.draw(lines);
+
+  const float radius = particle_radius(camera, sim.parameters().spacing);
+  sf::VertexArray dots(sf::Triangles);
+  for (int i = 0; i < particles.size(); ++i) {
+    const sf::Vector2f at = camera.to_screen(r.col(i));
+    if (!finite(at)) continue;
+    if (i == options.highlighted) add_polygon(dots, at, radius * 1.8f, 8, colour::highlight);
+    if (particles.pinned[std::size_t(i)])
+      add_polygon(dots, at, radius * 1.3f, 4, faded(colour::pinned, options.ghost));
+    else
+      add_polygon(dots, at, radius, 8, faded(colour::particle, options.ghost));
+  }
+  target.draw(dots);
+}
+
+Vec2 spring_force_on(const Simulation& sim, int particle) {
+  Vec2 total = Vec2::Zero();
+  try {
+    for (const Spring& s : sim.scene().springs)
+      if (s.p == particle || s.q == particle)
+        total += force_of(sim.implementation(), s, sim.particles(), particle);
+  } catch (const std::exception&) {
+    return Vec2::Zero();  // the student's force is not written yet: the banner says so
+  }
+  return total;
+}
+
+void draw_force_arrows(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
+                       int particle) {
+  const Particles& particles = sim.particles();
+  if (particle < 0 || particle >= particles.size()) return;
+  const SceneParameters& p = sim.parameters();
+  const double newtons_per_spacing =
+      std::max(0.2 * p.structural.k * p.structural.rest_length, 1e-9);
+  const double metres_per_newton = p.spacing / newtons_per_spacing;
+  const Vec2 at = particles.position.col(particle);
+  sf::VertexArray arrows(sf::Triangles);
+  Vec2 total = Vec2::Zero();
+  try {
+    for (const Spring& s : sim.scene().springs) {
+      if (s.p != particle && s.q != particle) continue;
+      const Vec2 f = force_of(sim.implementation(), s, particles, particle);
+      total += f;
+      add_arrow(arrows, camera.to_screen(at), camera.to_screen(at + f * metres_per_newton), 2.0f,
+                mix(colour::at_rest, sf::Color::White, 0.5));
+    }
+  } catch (const std::exception&) {
+    return;
+  }
+  add_arrow(arrows, camera.to_screen(at), camera.to_screen(at + total * metres_per_newton), 3.5f,
+            colour::net_force);
+  target.draw(arrows);
+}
+
+int particle_at(const Simulation& sim, const Camera& camera, sf::Vector2f screen) {
+  const Vectors& r = sim.particles().position;
+  const float reach = std::max(particle_radius(camera, sim.parameters().spacing) * 1.5f, 6.0f);
+  int best = -1;
+  float best_distance = reach * reach;
+  for (int i = 0; i < sim.particles().size(); ++i) {
+    const sf::Vector2f d = camera.to_screen(r.col(i)) - screen;
+    const float distance = d.x * d.x + d.y * d.y;
+    if (distance <= best_distance) best_distance = distance, best = i;
+  }
+  return best;
+}
+
+}  // namespace springlab::view
