@@ -169,7 +169,11 @@ void Session::report(const std::exception& error, const std::string& whose) {
   if (const auto* diverged = dynamic_cast<const DivergenceError*>(&error)) {
     std::ostringstream headline;
     headline << whose << "The simulation diverged at t = " << diverged->time() << " s";
-    problem_ = problem_of(Problem::Kind::diverged, headline.str(), error.what());
+    // The banner says when and where on lines of their own; the detail keeps only the why.
+    std::string why = error.what();
+    const std::string where = diverged->quantity() + ": ";
+    if (const auto at = why.find(where); at != std::string::npos) why.erase(0, at + where.size());
+    problem_ = problem_of(Problem::Kind::diverged, headline.str(), "why: " + why);
     problem_.time = diverged->time();
     problem_.particle = diverged->particle();
     problem_.quantity = diverged->quantity();
