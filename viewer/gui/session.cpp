@@ -133,8 +133,8 @@ void Session::rebuild(bool keep_state) {
   }
   try {
     validate(parameters_);
-    const Implementation& impl = code_ == Code::student ? student_implementation(parameters_.task)
-                                                        : reference_implementation();
+    const Implementation& impl =
+        code_ == Code::student ? student_code(parameters_.task) : reference_implementation();
     primary_ = make(impl, keep ? old_primary.get() : nullptr);
     if (compare_ != Compare::off && code_ == Code::student)
       reference_ = make(reference_implementation(),

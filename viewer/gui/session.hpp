@@ -69,6 +69,10 @@ class Session {
   /// Back to the scene's start with the current parameters.
   void reset();
 
+  /// Where the student's code of task N comes from: student_implementation (tests put the
+  /// reference here to compare two complete runs).
+  const Implementation& (*student_code)(int task) = &student_implementation;
+
   Code code() const { return code_; }
   void set_code(Code code);
   Compare compare() const { return compare_; }
