@@ -182,7 +182,7 @@ void App::frame(bool capture) {
     fitted_to_ = session_.fresh_starts();
   }
   const auto start = std::chrono::steady_clock::now();
-  info_.steps = session_.frame();
+  info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
   info_.stepping_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   draw();

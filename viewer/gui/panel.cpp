@@ -138,7 +138,7 @@ void Panel::stepping_section(Session& session, const FrameInfo& frame) {
   if (pacing.real_time) {
     ImGui::SliderScalar("real-time factor", ImGuiDataType_Double, &pacing.real_time_factor,
                         &min_factor, &max_factor, "%.3g", ImGuiSliderFlags_Logarithmic);
-    ImGui::Text("%.3g steps of h per frame",
+    ImGui::Text("%.3g steps of h per frame at 60 frames/s",
                 pacing.real_time_factor * pacing.frame_interval / p.step);
   } else {
     ImGui::SliderInt("steps per frame", &pacing.steps_per_frame, 1, 1000, "%d",
@@ -214,7 +214,7 @@ void Panel::plots(const Session& session, const Viewport& scene_area) {
   ImGui::Begin("##plots", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
   const History& h = session.history();
   ImGui::Columns(2, nullptr, false);
-  ImGui::Text("energy over the last %.0f s",
+  ImGui::Text("energy over the last %.1f s",
               h.size() > 1 ? double(h.time.back() - h.time.front()) : 0.0);
   plot("energy", "J",
        {{"kinetic", &h.kinetic, IM_COL32(255, 196, 0, 255)},

@@ -47,7 +47,7 @@ int exit_code(const Session& session) {
 }
 
 void benchmark_report(const std::vector<double>& frames, long steps, double seconds,
-                      double stepping, std::ostream& out) {
+                      double stepping, double simulated, std::ostream& out) {
   char line[256];
   std::snprintf(line, sizeof line,
                 "frame time over %zu frames: p50 %.2f ms, p95 %.2f ms, p99 %.2f ms, max %.2f ms\n",
@@ -58,6 +58,9 @@ void benchmark_report(const std::vector<double>& frames, long steps, double seco
                 "%ld steps in %.2f s: %.0f steps/s, %.0f frames/s; stepping %.0f %% of the time\n",
                 steps, seconds, double(steps) / seconds, double(frames.size()) / seconds,
                 100 * stepping / seconds);
+  out << line;
+  std::snprintf(line, sizeof line, "simulated %.2f s in %.2f s of wall time (%.2f x real time)\n",
+                simulated, seconds, simulated / seconds);
   out << line;
   const bool real_time = percentile(frames, 95) <= 1.0 / 60;
   out << (real_time ? "real time at 60 frames/s: yes (p95 within 16.7 ms)\n"
@@ -110,7 +113,7 @@ int run(App& app, const RunOptions& options, std::ostream& out) {
     out << "frames: " << frame_file(options.record, 0) << " ... "
         << frame_file(options.record, long(frame_seconds.size()) - 1) << '\n';
   if (options.benchmark && !frame_seconds.empty())
-    benchmark_report(frame_seconds, steps, seconds, stepping, out);
+    benchmark_report(frame_seconds, steps, seconds, stepping, app.session().time(), out);
   return exit_code(app.session());
 }
 

@@ -1,16 +1,19 @@
 #include "gui/scene_drawing.hpp"
 
-#include <SFML/Graphics/VertexArray.hpp>
+#include <SFML/Graphics/Vertex.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 namespace springlab::view {
 namespace {
 
 // Thick lines are quads; beyond this many springs hairlines are cheaper and still readable.
 constexpr std::size_t thick_spring_limit = 5000;
+constexpr int square_dot_limit = 2000;  // particles beyond which dots are drawn as squares
 
 sf::Color mix(sf::Color a, sf::Color b, double t) {
   const auto channel = [t](sf::Uint8 x, sf::Uint8 y) {
@@ -35,32 +38,46 @@ bool finite(sf::Vector2f p) {
 }
 
 // A segment `width` pixels wide as two triangles.
-void add_segment(sf::VertexArray& triangles, sf::Vector2f a, sf::Vector2f b, float width,
+void add_segment(std::vector<sf::Vertex>& triangles, sf::Vector2f a, sf::Vector2f b, float width,
                  sf::Color c) {
   const sf::Vector2f d = b - a;
   const float length = std::hypot(d.x, d.y);
   if (!(length > 0.0f)) return;
   const sf::Vector2f n(-d.y / length * width / 2, d.x / length * width / 2);
   for (sf::Vector2f p : {a + n, a - n, b + n, b + n, a - n, b - n})
-    triangles.append(sf::Vertex(p, c));
+    triangles.emplace_back(p, c);
 }
 
-// A regular polygon around `centre`: a dot (8 corners) or a square (4 corners, turned 45°).
-void add_polygon(sf::VertexArray& triangles, sf::Vector2f centre, float radius, int corners,
-                 sf::Color c) {
-  const double turn = corners == 4 ? std::numbers::pi / 4 : 0.0;
-  for (int k = 0; k < corners; ++k) {
-    const double a0 = turn + 2 * std::numbers::pi * k / corners;
-    const double a1 = turn + 2 * std::numbers::pi * (k + 1) / corners;
-    triangles.append(sf::Vertex(centre, c));
-    triangles.append(sf::Vertex(
-        centre + sf::Vector2f(float(std::cos(a0)) * radius, float(std::sin(a0)) * radius), c));
-    triangles.append(sf::Vertex(
-        centre + sf::Vector2f(float(std::cos(a1)) * radius, float(std::sin(a1)) * radius), c));
+// A dot as an octagon (fan of triangles), or a pinned particle as a square (two triangles).
+// Large grids draw every particle as a square: an octagon costs four times the vertices, which
+// software OpenGL feels at 10,000 particles, and at a few pixels the two look alike.
+void add_dot(std::vector<sf::Vertex>& triangles, sf::Vector2f centre, float radius, bool square,
+             sf::Color c) {
+  static const auto octagon = [] {
+    std::array<sf::Vector2f, 9> corners;
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const double a = 2 * std::numbers::pi * double(k) / 8;
+      corners[k] = {float(std::cos(a)), float(std::sin(a))};
+    }
+    return corners;
+  }();
+  if (square) {
+    const sf::Vector2f a = centre + sf::Vector2f(-radius, -radius);
+    const sf::Vector2f b = centre + sf::Vector2f(radius, -radius);
+    const sf::Vector2f d = centre + sf::Vector2f(-radius, radius);
+    const sf::Vector2f e = centre + sf::Vector2f(radius, radius);
+    for (sf::Vector2f p : {a, b, d, d, b, e})
+      triangles.emplace_back(p, c);
+    return;
+  }
+  for (std::size_t k = 0; k < 8; ++k) {
+    triangles.emplace_back(centre, c);
+    triangles.emplace_back(centre + octagon[k] * radius, c);
+    triangles.emplace_back(centre + octagon[k + 1] * radius, c);
   }
 }
 
-void add_arrow(sf::VertexArray& triangles, sf::Vector2f from, sf::Vector2f to, float width,
+void add_arrow(std::vector<sf::Vertex>& triangles, sf::Vector2f from, sf::Vector2f to, float width,
                sf::Color c) {
   const sf::Vector2f d = to - from;
   const float length = std::hypot(d.x, d.y);
@@ -70,7 +87,7 @@ void add_arrow(sf::VertexArray& triangles, sf::Vector2f from, sf::Vector2f to, f
   const sf::Vector2f base = to - u * head;
   add_segment(triangles, from, base, width, c);
   for (sf::Vector2f p : {to, base + n * (head / 2), base - n * (head / 2)})
-    triangles.append(sf::Vertex(p, c));
+    triangles.emplace_back(p, c);
 }
 
 // The spring and damper force on particle `at` from spring s (N).
@@ -88,12 +105,15 @@ float particle_radius(const Camera& camera, double spacing) {
 
 void draw_scene(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
                 const DrawOptions& options) {
+  // Reused from frame to frame: a 100×100 grid needs some 300,000 vertices a frame.
+  static std::vector<sf::Vertex> lines, dots;
+  lines.clear();
+  dots.clear();
   const Particles& particles = sim.particles();
   const Vectors& r = particles.position;
   const auto& springs = sim.scene().springs;
   const bool thick = springs.size() <= thick_spring_limit;
   const float width = std::clamp(particle_radius(camera, sim.parameters().spacing) / 3, 1.0f, 3.0f);
-  sf::VertexArray lines(thick ? sf::Triangles : sf::Lines);
   for (const Spring& s : springs) {
     if (options.hidden_families.count(int(s.family))) continue;
     const sf::Vector2f a = camera.to_screen(r.col(s.p)), b = camera.to_screen(r.col(s.q));
@@ -102,24 +122,24 @@ void draw_scene(sf::RenderTarget& target, const Simulation& sim, const Camera& c
     if (thick) {
       add_segment(lines, a, b, width, c);
     } else {
-      lines.append(sf::Vertex(a, c));
-      lines.append(sf::Vertex(b, c));
+      lines.emplace_back(a, c);
+      lines.emplace_back(b, c);
     }
   }
-  target.draw(lines);
+  target.draw(lines.data(), lines.size(), thick ? sf::Triangles : sf::Lines);
 
   const float radius = particle_radius(camera, sim.parameters().spacing);
-  sf::VertexArray dots(sf::Triangles);
+  const bool squares = particles.size() > square_dot_limit;
   for (int i = 0; i < particles.size(); ++i) {
     const sf::Vector2f at = camera.to_screen(r.col(i));
     if (!finite(at)) continue;
-    if (i == options.highlighted) add_polygon(dots, at, radius * 1.8f, 8, colour::highlight);
+    if (i == options.highlighted) add_dot(dots, at, radius * 1.8f, squares, colour::highlight);
     if (particles.pinned[std::size_t(i)])
-      add_polygon(dots, at, radius * 1.3f, 4, faded(colour::pinned, options.ghost));
+      add_dot(dots, at, radius * 1.3f, true, faded(colour::pinned, options.ghost));
     else
-      add_polygon(dots, at, radius, 8, faded(colour::particle, options.ghost));
+      add_dot(dots, at, radius, squares, faded(colour::particle, options.ghost));
   }
-  target.draw(dots);
+  target.draw(dots.data(), dots.size(), sf::Triangles);
 }
 
 Vec2 spring_force_on(const Simulation& sim, int particle) {
@@ -143,7 +163,7 @@ void draw_force_arrows(sf::RenderTarget& target, const Simulation& sim, const Ca
       std::max(0.2 * p.structural.k * p.structural.rest_length, 1e-9);
   const double metres_per_newton = p.spacing / newtons_per_spacing;
   const Vec2 at = particles.position.col(particle);
-  sf::VertexArray arrows(sf::Triangles);
+  std::vector<sf::Vertex> arrows;
   Vec2 total = Vec2::Zero();
   try {
     for (const Spring& s : sim.scene().springs) {
@@ -158,7 +178,7 @@ void draw_force_arrows(sf::RenderTarget& target, const Simulation& sim, const Ca
   }
   add_arrow(arrows, camera.to_screen(at), camera.to_screen(at + total * metres_per_newton), 3.5f,
             colour::net_force);
-  target.draw(arrows);
+  target.draw(arrows.data(), arrows.size(), sf::Triangles);
 }
 
 int particle_at(const Simulation& sim, const Camera& camera, sf::Vector2f screen) {

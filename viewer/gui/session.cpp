@@ -196,11 +196,12 @@ double Session::time() const {
   return time_offset_ + (primary_ ? primary_->time() : 0.0);
 }
 
-long Session::frame() {
+long Session::frame(double seconds) {
   if (!running_ || !primary_) return 0;
   long steps = pacing_.steps_per_frame;
   if (pacing_.real_time) {
-    owed_steps_ += pacing_.real_time_factor * pacing_.frame_interval / parameters_.step;
+    const double lasted = std::clamp(seconds, 0.0, pacing_.longest_frame);
+    owed_steps_ += pacing_.real_time_factor * lasted / parameters_.step;
     steps = long(std::floor(owed_steps_ + 1e-9));  // 3 × (1/3) is one whole step
     owed_steps_ -= double(steps);
   }

@@ -38,14 +38,16 @@ struct History {
   std::size_t size() const { return time.size(); }
 };
 
-/// How far the simulation advances per frame: a whole number of fixed steps h, never the frame
-/// time. In real-time mode the count follows from the real-time factor and the nominal frame
-/// interval (1/60 s), carrying the fraction to the next frame (1.67 steps a frame at h = 0.01 s).
+/// How far the simulation advances per frame: a whole number of fixed steps h, never a step of
+/// the frame's length. In real-time mode the count follows from the real-time factor and the
+/// frame's duration, carrying the fraction to the next frame (1.67 steps a frame at h = 0.01 s
+/// and 60 frames/s); otherwise it is steps_per_frame.
 struct Pacing {
   bool real_time = true;
   double real_time_factor = 1.0;       ///< simulated seconds per wall-clock second
   int steps_per_frame = 1;             ///< used when real_time is off
-  double frame_interval = 1.0 / 60.0;  ///< s
+  double frame_interval = 1.0 / 60.0;  ///< s, the frame rate the viewer aims at
+  double longest_frame = 0.1;          ///< s: a stall (a window drag) is not caught up beyond it
   long max_steps_per_frame = 20000;    ///< keeps the window responsive
 };
 
@@ -85,8 +87,9 @@ class Session {
   void set_running(bool running);
   Pacing& pacing() { return pacing_; }
   const Pacing& pacing() const { return pacing_; }
-  /// Advances one frame's worth of steps when running; returns the steps taken.
-  long frame();
+  /// Advances a frame that lasted `seconds` (the headless runs and tests pass exactly 1/60 s,
+  /// so they repeat to the bit) when running; returns the steps taken.
+  long frame(double seconds);
   /// One step h, also when paused.
   void single_step();
 
