@@ -106,6 +106,12 @@ TEST_CASE("each particle is drawn at the screen position of its simulated positi
     const sf::Color want = p.pinned[std::size_t(i)] ? colour::pinned : colour::particle;
     CHECK(text(pixel_at(app.captured(), at)) == text(want));
   }
+  // The particle under the mouse is ringed and shows its forces as arrows.
+  app.handle(mouse_moved(app.camera().to_screen(p.position.col(8))));
+  app.frame();
+  app.frame(true);
+  app.captured().saveToFile(shot("force-arrows"));
+  CHECK(app.last_frame().hovered == 8);
   // Far from the grid: the background.
   const Viewport& area = app.camera().viewport();
   const sf::Vector2f far(area.left + area.width - 5, area.top + area.height / 2);

@@ -25,7 +25,9 @@ std::string fingerprint(const SceneParameters& p) {
   std::ostringstream out;
   out.precision(17);
   for_each_field(p, [&](const FieldInfo& info, const auto& value) {
-    if (info.key != "step") out << info.key << '=' << value << ';';
+    // Fields that text cannot show (none yet) still count by their key.
+    if constexpr (requires { out << value; })
+      if (info.key != "step") out << info.key << '=' << value << ';';
   });
   return out.str();
 }
