@@ -17,7 +17,10 @@ constexpr int critical_step_particle_limit = 100;
 
 void push_capped(std::vector<float>& series, double value) {
   if (series.size() == History::capacity) series.erase(series.begin());
-  series.push_back(static_cast<float>(value));
+  // A runaway energy can exceed what a float holds; the plot shows it pinned at the top.
+  const double largest = std::numeric_limits<float>::max();
+  series.push_back(
+      static_cast<float>(std::isnan(value) ? value : std::clamp(value, -largest, largest)));
 }
 
 // Every field as text: a cheap key that changes whenever the parameters do.
@@ -204,8 +207,10 @@ long Session::frame(double seconds) {
   if (pacing_.real_time) {
     const double lasted = std::clamp(seconds, 0.0, pacing_.longest_frame);
     owed_steps_ += pacing_.real_time_factor * lasted / parameters_.step;
-    steps = long(std::floor(owed_steps_ + 1e-9));  // 3 × (1/3) is one whole step
-    owed_steps_ -= double(steps);
+    // A tiny h can owe more steps than a frame may take (or a long holds): the rest is dropped.
+    const double due = std::floor(owed_steps_ + 1e-9);  // 3 × (1/3) is one whole step
+    steps = long(std::min(due, double(pacing_.max_steps_per_frame)));
+    owed_steps_ = due > double(steps) ? 0.0 : owed_steps_ - double(steps);
   }
   steps = std::clamp(steps, 0L, pacing_.max_steps_per_frame);
   advance(steps);
