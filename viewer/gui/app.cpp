@@ -103,7 +103,10 @@ void App::handle(const sf::Event& event) {
       if (!glue_.wants_mouse()) on_press(event.mouseButton);
       break;
     case sf::Event::MouseButtonReleased:
-      if (event.mouseButton.button == sf::Mouse::Left) session_.release(), panning_ = false;
+      if (event.mouseButton.button == sf::Mouse::Left) {
+        session_.release();
+        panning_ = false;
+      }
       break;
     case sf::Event::MouseWheelScrolled:
       if (!glue_.wants_mouse() && view_at(mouse_) >= 0)

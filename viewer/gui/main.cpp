@@ -3,6 +3,7 @@
 // without a display). Exit codes as springlab-run's (0 done, 1 failed, 2 bad input, 3 diverged,
 // 4 a task not written yet), and 5 when there is no display to open a window on.
 #include "gui/app.hpp"
+#include "gui/display.hpp"
 #include "gui/runs.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
@@ -75,9 +76,8 @@ int open_viewer(Options& options) {
   const bool headless = options.run.frames > 0 || !options.run.screenshot.empty() ||
                         !options.run.record.empty() || options.run.benchmark;
   if (headless && options.run.frames == 0) options.run.frames = options.run.benchmark ? 600 : 120;
-  const char* display = std::getenv("DISPLAY");
-  if (!display || !*display) {
-    std::cerr << "springlab-view: no display (DISPLAY is not set), so no window can open.\n"
+  if (!display_reachable(std::cerr)) {
+    std::cerr << "springlab-view: no display, so no window can open.\n"
                  "Run it headless under Xvfb instead, e.g.\n"
                  "  xvfb-run -a springlab-view --scene "
               << options.app.scene << " --frames 120 --screenshot view.png\n";
