@@ -89,6 +89,11 @@ void Session::reset() {
 }
 
 void Session::apply() {
+  // A smaller grid keeps its displaced particle (the last one in the task scenes) inside it,
+  // rather than refusing the new size.
+  const int particles = parameters_.rows * parameters_.cols;
+  if (particles >= 2 && parameters_.displaced_particle >= particles)
+    parameters_.displaced_particle = particles - 1;
   rebuild(true);
 }
 
