@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace {
@@ -300,4 +301,52 @@ TEST_CASE("side by side and overlaid, the student's run and the reference are bo
   app.captured().saveToFile(shot("compare-overlay"));
   CHECK(app.session().reference() != nullptr);
   CHECK(app.session().problem().kind == Problem::Kind::none);
+}
+
+TEST_CASE("the keyboard and the wheel reach the panel and the view", "[viewer][keys]") {
+  App app(options_for("task4"));
+  app.frame();
+  // Type a scene file's path into the panel and load it.
+  const std::string path = std::filesystem::absolute(shot("wide")).replace_extension(".toml");
+  std::ofstream(path) << "name = \"wide\"\ntask = 3\nrows = 2\ncols = 5\nshear.enabled = true\n";
+  click(app, centre_of(*app.panel().rect("scene file")));
+  for (char c : path) {
+    sf::Event typed;
+    typed.type = sf::Event::TextEntered;
+    typed.text.unicode = sf::Uint32(c);
+    app.handle(typed);
+  }
+  app.frame();
+  click(app, centre_of(*app.panel().rect("load")));
+  CHECK(app.session().source() == path);
+  CHECK(app.session().parameters().name == "wide");
+  REQUIRE(app.session().primary() != nullptr);
+  CHECK(app.session().primary()->particles().size() == 10);
+
+  // Space pauses (once the text field has let the keyboard go), the wheel zooms.
+  click(app, app.camera().viewport().centre() + sf::Vector2f(0, 250));
+  sf::Event key;
+  key.type = sf::Event::KeyPressed;
+  key.key = {sf::Keyboard::Space, false, false, false, false};
+  app.handle(key);
+  app.frame();
+  CHECK_FALSE(app.session().running());
+  const double scale = app.camera().pixels_per_metre();
+  sf::Event wheel;
+  wheel.type = sf::Event::MouseWheelScrolled;
+  wheel.mouseWheelScroll = {sf::Mouse::VerticalWheel, 2.0f, 300, 300};
+  app.handle(mouse_moved({300, 300}));
+  app.handle(wheel);
+  app.frame();
+  CHECK(app.camera().pixels_per_metre() > scale);
+
+  // Shift+click pushes the particle under the mouse by the panel's push velocity.
+  const sf::Vector2f at =
+      app.camera().to_screen(app.session().primary()->particles().position.col(0));
+  const Vec2 before = app.session().primary()->particles().velocity.col(0);
+  key.key = {sf::Keyboard::LShift, false, true, false, false};
+  app.handle(key);
+  click(app, {std::round(at.x), std::round(at.y)});
+  const Vec2 v = app.session().primary()->particles().velocity.col(0);
+  CHECK((v - before - app.settings().push_velocity).norm() < 1e-12);
 }

@@ -71,8 +71,10 @@ void Panel::scene_section(Session& session) {
     ImGui::EndCombo();
   }
   ImGui::InputTextWithHint("##file", "or a scene file (.toml)", file_.data(), file_.size());
+  remember("scene file");
   ImGui::SameLine();
   if (ImGui::Button("Load") && file_[0] != '\0') session.load(file_.data());
+  remember("load");
 
   int code = session.code() == Code::student ? 1 : 0;
   const std::string yours = p.task > 0 ? "yours (task " + std::to_string(p.task) + ")" : "yours";

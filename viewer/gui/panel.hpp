@@ -44,7 +44,7 @@ class Panel {
                      const Viewport& scene_area);
 
   /// The rectangle of a widget drawn in the last frame: a parameter key ("structural.k",
-  /// "step", …) or "run", "step once", "reset", "banner", "banner reset".
+  /// "step", …) or "run", "step once", "reset", "scene file", "load", "banner", "banner reset".
   std::optional<WidgetRect> rect(const std::string& name) const;
   /// Whether the banner (a problem) was shown in the last frame.
   bool banner_shown() const { return banner_shown_; }
