@@ -153,6 +153,7 @@ TEST_CASE("switching scenes, code, integrators, comparison and grid size never c
     } else {
       REQUIRE(app.session().primary() != nullptr);
       CHECK(app.session().primary()->particles().size() == side * side);
+      CHECK(app.session().running());  // also after the refused size
     }
   }
   sf::Event resized;

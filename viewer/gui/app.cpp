@@ -86,7 +86,7 @@ void App::handle(const sf::Event& event) {
     case sf::Event::Resized:
       window_.setView(
           sf::View(sf::FloatRect(0, 0, float(event.size.width), float(event.size.height))));
-      layout();
+      fit();
       break;
     case sf::Event::MouseMoved: {
       const sf::Vector2f now(float(event.mouseMove.x), float(event.mouseMove.y));

@@ -132,7 +132,9 @@ void Panel::stepping_section(Session& session, const FrameInfo& frame) {
     else
       ImGui::Text("critical step %.4g s (h is %.0f%% of it)", *limit, 100 * p.step / *limit);
   } else {
-    ImGui::TextColored(quiet_colour, "critical step %s", session.critical_step_note().c_str());
+    ImGui::PushStyleColor(ImGuiCol_Text, quiet_colour);
+    ImGui::TextWrapped("critical step %s", session.critical_step_note().c_str());
+    ImGui::PopStyleColor();
   }
 
   Pacing& pacing = session.pacing();

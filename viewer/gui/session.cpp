@@ -131,6 +131,7 @@ void Session::rebuild(bool keep_state) {
   const bool keep = keep_state && primary_ && problem_.kind == Problem::Kind::none &&
                     primary_->particles().size() == parameters_.rows * parameters_.cols;
   const double elapsed = keep ? time() : 0.0;
+  const bool had_problem = problem_.kind != Problem::Kind::none;
   std::unique_ptr<Simulation> old_primary = std::move(primary_),
                               old_reference = std::move(reference_);
   problem_ = {};
@@ -172,6 +173,8 @@ void Session::rebuild(bool keep_state) {
     report(error, "");
   }
   if (!primary_) running_ = false;
+  // A run stopped by a problem (not by the user) goes again once the problem is fixed.
+  if (had_problem && primary_) running_ = true;
 }
 
 void Session::report(const std::exception& error, const std::string& whose) {
@@ -256,8 +259,8 @@ std::optional<double> Session::critical_step() {
   critical_key_ = key;
   critical_.reset();
   if (parameters_.rows * parameters_.cols > critical_step_particle_limit) {
-    critical_note_ = "not estimated above " + std::to_string(critical_step_particle_limit) +
-                     " particles (a dense eigen-solve)";
+    critical_note_ =
+        "not estimated above " + std::to_string(critical_step_particle_limit) + " particles";
     return critical_;
   }
   try {
