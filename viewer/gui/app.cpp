@@ -1,5 +1,6 @@
 #include "gui/app.hpp"
 
+#include "gui/resident_driver.hpp"
 #include "gui/scene_drawing.hpp"
 
 #include <imgui.h>
@@ -38,6 +39,7 @@ App::App(const AppOptions& options)
       glue_(window_),
       session_(options.scene) {
   if (options.frame_rate_limit) window_.setFramerateLimit(60);
+  keep_gl_driver_loaded();
   layout();
 }
 
