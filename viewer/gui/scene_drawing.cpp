@@ -1,5 +1,7 @@
 #include "gui/scene_drawing.hpp"
 
+#include "gui/pixel_canvas.hpp"
+
 #include <SFML/Graphics/Vertex.hpp>
 
 #include <algorithm>
@@ -11,7 +13,7 @@
 namespace springlab::view {
 namespace {
 
-// Thick lines are quads; beyond this many springs hairlines are cheaper and still readable.
+// Springs are thick lines drawn by OpenGL up to this many; beyond, hairlines drawn in memory.
 constexpr std::size_t thick_spring_limit = 5000;
 constexpr int square_dot_limit = 2000;  // particles beyond which dots are drawn as squares
 
@@ -100,46 +102,54 @@ Vec2 force_of(const Implementation& impl, const Spring& s, const Particles& p, i
 }  // namespace
 
 float particle_radius(const Camera& camera, double spacing) {
-  return std::clamp(static_cast<float>(0.1 * spacing * camera.pixels_per_metre()), 2.5f, 11.0f);
+  // A tenth of the spacing, but large enough to see unless the grid itself is that dense.
+  const float apart = static_cast<float>(spacing * camera.pixels_per_metre());
+  return std::clamp(0.1f * apart, std::min(2.5f, 0.2f * apart), 11.0f);
 }
 
 void draw_scene(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
                 const DrawOptions& options) {
-  // Reused from frame to frame: a 100×100 grid needs some 300,000 vertices a frame.
-  static std::vector<sf::Vertex> lines, dots;
-  lines.clear();
-  dots.clear();
   const Particles& particles = sim.particles();
   const Vectors& r = particles.position;
   const auto& springs = sim.scene().springs;
-  const bool thick = springs.size() <= thick_spring_limit;
+  // Reused from frame to frame: large scenes are drawn in memory (pixel_canvas.hpp).
+  static std::vector<sf::Vertex> lines, dots;
+  static PixelCanvas canvas;
+  const bool in_memory = springs.size() > thick_spring_limit;
+  lines.clear();
+  dots.clear();
+  if (in_memory) canvas.begin(camera.viewport());
   const float width = std::clamp(particle_radius(camera, sim.parameters().spacing) / 3, 1.0f, 3.0f);
   for (const Spring& s : springs) {
     if (options.hidden_families.count(int(s.family))) continue;
     const sf::Vector2f a = camera.to_screen(r.col(s.p)), b = camera.to_screen(r.col(s.q));
     if (!finite(a) || !finite(b)) continue;
     const sf::Color c = faded(strain_colour(s, r, options.strain_scale), options.ghost);
-    if (thick) {
+    if (in_memory)
+      canvas.line(a, b, c);
+    else
       add_segment(lines, a, b, width, c);
-    } else {
-      lines.emplace_back(a, c);
-      lines.emplace_back(b, c);
-    }
   }
-  target.draw(lines.data(), lines.size(), thick ? sf::Triangles : sf::Lines);
+  target.draw(lines.data(), lines.size(), sf::Triangles);
 
   const float radius = particle_radius(camera, sim.parameters().spacing);
   const bool squares = particles.size() > square_dot_limit;
   for (int i = 0; i < particles.size(); ++i) {
     const sf::Vector2f at = camera.to_screen(r.col(i));
     if (!finite(at)) continue;
-    if (i == options.highlighted) add_dot(dots, at, radius * 1.8f, squares, colour::highlight);
-    if (particles.pinned[std::size_t(i)])
-      add_dot(dots, at, radius * 1.3f, true, faded(colour::pinned, options.ghost));
-    else
-      add_dot(dots, at, radius, squares, faded(colour::particle, options.ghost));
+    const bool pinned = particles.pinned[std::size_t(i)];
+    const float size = i == options.highlighted ? 1.8f : pinned ? 1.3f : 1.0f;
+    const sf::Color c = faded(pinned ? colour::pinned : colour::particle, options.ghost);
+    if (in_memory) {
+      if (i == options.highlighted) canvas.square(at, radius * size, colour::highlight);
+      canvas.square(at, radius * (pinned ? 1.3f : 1.0f), c);
+      continue;
+    }
+    if (i == options.highlighted) add_dot(dots, at, radius * size, squares, colour::highlight);
+    add_dot(dots, at, radius * (pinned ? 1.3f : 1.0f), squares || pinned, c);
   }
   target.draw(dots.data(), dots.size(), sf::Triangles);
+  if (in_memory) canvas.draw(target);
 }
 
 Vec2 spring_force_on(const Simulation& sim, int particle) {
