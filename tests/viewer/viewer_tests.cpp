@@ -351,3 +351,22 @@ TEST_CASE("the keyboard and the wheel reach the panel and the view", "[viewer][k
   const Vec2 v = app.session().primary()->particles().velocity.col(0);
   CHECK((v - before - app.settings().push_velocity).norm() < 1e-12);
 }
+
+TEST_CASE("a grid too large for OpenGL lines is drawn in memory, each particle where it is",
+          "[viewer][draw]") {
+  App app(options_for("task2"));
+  app.session().parameters().rows = app.session().parameters().cols = 70;  // 9,660 springs
+  app.session().apply();
+  for (int k = 0; k < 10; ++k)
+    app.frame();
+  app.frame(true);
+  app.captured().saveToFile(shot("draw-large"));
+  const Simulation& sim = *app.session().primary();
+  REQUIRE(sim.scene().springs.size() > 5000);
+  int wrong = 0;
+  for (int i = 0; i < sim.particles().size(); ++i) {
+    const sf::Vector2f at = app.camera().to_screen(sim.particles().position.col(i));
+    if (pixel_at(app.captured(), at) != colour::particle) ++wrong;
+  }
+  CHECK(wrong == 0);
+}
