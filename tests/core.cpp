@@ -262,3 +262,32 @@ TEST_CASE("Stability theory: the stiffness matrix is the derivative of the sprin
     CHECK((column - model.stiffness.col(j)).norm() <= 1e-6 * model.stiffness.norm());
   }
 }
+
+TEST_CASE("Edits from outside: a moved particle restarts the integrator, a pinned one stays put",
+          "[core][simulation]") {
+  SceneParameters p = task_scene(4);  // Verlet: it remembers r_{n-1}, which an edit invalidates
+  Simulation sim(p, implementation());
+  sim.advance(20);
+  const Vec2 moved(0.5, -0.5);
+  sim.set_particle(4, moved, Vec2(1.0, 0.0));
+  CHECK(sim.particles().position.col(4) == moved);
+  CHECK(sim.particles().velocity.col(4) == Vec2(1.0, 0.0));
+  // After the edit Verlet starts afresh from (r, v), as a new simulation of that state does.
+  Scene copy = sim.scene();
+  Simulation fresh(copy, implementation());
+  sim.step();
+  fresh.step();
+  CHECK((sim.particles().position - fresh.particles().position).norm() == 0.0);
+
+  sim.set_pinned(0, true);
+  const Vec2 at = sim.particles().position.col(0);
+  CHECK(sim.particles().velocity.col(0) == Vec2::Zero());
+  sim.set_particle(0, at, Vec2(3.0, 3.0));  // a pinned particle takes no velocity
+  CHECK(sim.particles().velocity.col(0) == Vec2::Zero());
+  sim.advance(100);
+  CHECK(sim.particles().position.col(0) == at);  // to the last bit
+  sim.set_pinned(0, false);
+  sim.advance(10);
+  CHECK(sim.particles().position.col(0) != at);
+  CHECK_THAT(rejection([&] { sim.set_pinned(9, true); }), Contains("particle = 9"));
+}

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 namespace springlab {
 namespace {
@@ -106,6 +107,29 @@ void Simulation::check() const {
 void Simulation::advance(long steps) {
   for (long i = 0; i < steps; ++i)
     step();
+}
+
+void Simulation::check_index(int i) const {
+  const int n = scene_.particles.size();
+  if (i < 0 || i >= n)
+    throw InvalidParameter("particle", std::to_string(i),
+                           "0 <= particle <= " + std::to_string(n - 1));
+}
+
+void Simulation::set_particle(int i, const Vec2& position, const Vec2& velocity) {
+  check_index(i);
+  Particles& particles = scene_.particles;
+  particles.position.col(i) = position;
+  particles.velocity.col(i) = particles.pinned[i] ? Vec2::Zero() : velocity;
+  integrator_->restart();
+}
+
+void Simulation::set_pinned(int i, bool pinned) {
+  check_index(i);
+  Particles& particles = scene_.particles;
+  particles.pinned[i] = pinned;  // the model's hold_pinned (5.5) now holds it
+  if (pinned) particles.velocity.col(i).setZero();
+  integrator_->restart();
 }
 
 void Simulation::check_divergence(bool check_energy) const {

@@ -63,8 +63,18 @@ class Simulation {
   Diagnostics diagnostics() const;
   double reference_energy() const { return reference_energy_; }  ///< J, see DivergenceLimits
 
+  /// Sets particle i's position (m) and velocity (m/s) from outside, as the viewer does for a
+  /// dragged or pushed particle; a pinned particle keeps zero velocity. Restarts the integrator,
+  /// whose memory of earlier steps no longer matches the state. Throws InvalidParameter for an
+  /// index outside the particles.
+  void set_particle(int i, const Vec2& position, const Vec2& velocity);
+  /// Pins (its acceleration and velocity held at zero) or frees particle i; restarts the
+  /// integrator. Throws InvalidParameter for an index outside the particles.
+  void set_pinned(int i, bool pinned);
+
  private:
   void check_divergence(bool check_energy) const;
+  void check_index(int i) const;
 
   Scene scene_;
   const Implementation* impl_;

@@ -1,0 +1,372 @@
+// The viewer as a user meets it, in a real window (under Xvfb in CI): what is drawn is where the
+// simulation says, the panel answers real (synthetic) mouse input, switching anything does not
+// crash, a divergence and unwritten student code each show their banner.
+#include "gui/app.hpp"
+#include "gui/scene_drawing.hpp"
+#include "springlab/integrator.hpp"
+#include "springlab/scene.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+using namespace springlab;
+using namespace springlab::view;
+
+AppOptions options_for(const std::string& scene) {
+  AppOptions options;
+  options.scene = scene;
+  options.frame_rate_limit = false;
+  options.fixed_frame_time = true;
+  return options;
+}
+
+sf::Event mouse_moved(sf::Vector2f at) {
+  sf::Event event;
+  event.type = sf::Event::MouseMoved;
+  event.mouseMove = {int(at.x), int(at.y)};
+  return event;
+}
+
+sf::Event mouse_button(bool pressed, sf::Mouse::Button button, sf::Vector2f at) {
+  sf::Event event;
+  event.type = pressed ? sf::Event::MouseButtonPressed : sf::Event::MouseButtonReleased;
+  event.mouseButton = {button, int(at.x), int(at.y)};
+  return event;
+}
+
+// Moves there, presses, releases: a frame after each, as a hand would.
+void click(App& app, sf::Vector2f at, sf::Mouse::Button button = sf::Mouse::Left) {
+  app.handle(mouse_moved(at));
+  app.frame();
+  app.handle(mouse_button(true, button, at));
+  app.frame();
+  app.handle(mouse_button(false, button, at));
+  app.frame();
+}
+
+void drag(App& app, sf::Vector2f from, sf::Vector2f to) {
+  app.handle(mouse_moved(from));
+  app.frame();
+  app.handle(mouse_button(true, sf::Mouse::Left, from));
+  app.frame();
+  for (int k = 1; k <= 4; ++k) {
+    app.handle(mouse_moved(from + (to - from) * (float(k) / 4)));
+    app.frame();
+  }
+  app.handle(mouse_button(false, sf::Mouse::Left, to));
+  app.frame();
+}
+
+sf::Vector2f centre_of(const WidgetRect& r) {
+  return {(r.left + r.right) / 2, (r.top + r.bottom) / 2};
+}
+
+sf::Color pixel_at(const sf::Image& image, sf::Vector2f at) {
+  const long x = std::lround(at.x), y = std::lround(at.y);
+  REQUIRE((x >= 0 && y >= 0 && x < long(image.getSize().x) && y < long(image.getSize().y)));
+  return image.getPixel(unsigned(x), unsigned(y));
+}
+
+std::string text(sf::Color c) {
+  return "(" + std::to_string(c.r) + ", " + std::to_string(c.g) + ", " + std::to_string(c.b) + ")";
+}
+
+// Screenshots of the tests, for a person to look at when one fails.
+std::string shot(const std::string& name) {
+  std::filesystem::create_directories("viewer-screenshots");
+  return "viewer-screenshots/" + name + ".png";
+}
+
+}  // namespace
+
+TEST_CASE("each particle is drawn at the screen position of its simulated position",
+          "[viewer][draw]") {
+  App app(options_for("task4"));
+  for (int k = 0; k < 30; ++k)
+    app.frame();  // in motion: not at the grid positions any more
+  // Pin a corner with a right-click on it, to see the pinned mark too.
+  const Simulation& before = *app.session().primary();
+  click(app, app.camera().to_screen(before.particles().position.col(0)), sf::Mouse::Right);
+  REQUIRE(app.session().pinned(0));
+  app.handle(mouse_moved({5, 5}));  // away from the particles: no highlight
+  app.frame(true);
+  app.captured().saveToFile(shot("draw"));
+  const Simulation& sim = *app.session().primary();
+  const Particles& p = sim.particles();
+  REQUIRE(p.position.col(8) != grid_position(2, 2, 1.0));
+  for (int i = 0; i < p.size(); ++i) {
+    const sf::Vector2f at = app.camera().to_screen(p.position.col(i));
+    INFO("particle " << i << " at (" << at.x << ", " << at.y << ") px");
+    REQUIRE(app.camera().viewport().contains(at));
+    const sf::Color want = p.pinned[std::size_t(i)] ? colour::pinned : colour::particle;
+    CHECK(text(pixel_at(app.captured(), at)) == text(want));
+  }
+  // The particle under the mouse is ringed and shows its forces as arrows.
+  app.handle(mouse_moved(app.camera().to_screen(p.position.col(8))));
+  app.frame();
+  app.frame(true);
+  app.captured().saveToFile(shot("force-arrows"));
+  CHECK(app.last_frame().hovered == 8);
+  // Far from the grid: the background.
+  const Viewport& area = app.camera().viewport();
+  const sf::Vector2f far(area.left + area.width - 5, area.top + area.height / 2);
+  CHECK(text(pixel_at(app.captured(), far)) == text(colour::background));
+}
+
+TEST_CASE("switching scenes, code, integrators, comparison and grid size never crashes",
+          "[viewer][switch]") {
+  App app(options_for("task1"));
+  for (const std::string& scene : task_scene_names()) {
+    app.session().load(scene);
+    for (Code code : {Code::reference, Code::student})
+      for (Compare compare : {Compare::off, Compare::overlay, Compare::side_by_side})
+        for (const std::string& integrator : integrator_names()) {
+          INFO(scene << ", " << (code == Code::student ? "student" : "reference") << ", "
+                     << integrator << ", compare " << int(compare));
+          app.session().set_code(code);
+          app.session().set_compare(compare);
+          app.session().parameters().integrator = integrator;
+          app.session().apply();
+          for (int k = 0; k < 3; ++k)
+            app.frame();
+          const Problem::Kind kind = app.session().problem().kind;
+          if (code == Code::reference) CHECK(app.session().primary() != nullptr);
+          CHECK((kind == Problem::Kind::none || kind == Problem::Kind::diverged ||
+                 (code == Code::student && kind == Problem::Kind::not_implemented)));
+        }
+  }
+  app.session().set_code(Code::reference);
+  for (int side : {2, 12, 1, 40}) {  // task4 moves particle 8: a 2x2 grid keeps it inside
+    app.session().parameters().rows = app.session().parameters().cols = side;
+    app.session().apply();
+    app.frame();
+    INFO("grid " << side << "x" << side);
+    if (side == 1) {  // a single particle is refused with a message, not a crash
+      CHECK(app.session().problem().kind == Problem::Kind::invalid);
+      CHECK(app.panel().banner_shown());
+    } else {
+      REQUIRE(app.session().primary() != nullptr);
+      CHECK(app.session().primary()->particles().size() == side * side);
+      CHECK(app.session().running());  // also after the refused size
+    }
+  }
+  sf::Event resized;
+  resized.type = sf::Event::Resized;
+  resized.size = {900, 600};
+  app.window().setSize({900, 600});
+  app.handle(resized);
+  app.frame(true);
+  app.captured().saveToFile(shot("switch"));
+  CHECK(app.camera().viewport().width == Approx(900 - Panel::width));
+}
+
+TEST_CASE("a divergence pauses the run and shows when, where and why, with a reset",
+          "[viewer][divergence]") {
+  App app(options_for("task1"));
+  app.session().parameters().step = 0.5;  // a hundred times explicit Euler's limit here
+  app.session().reset();
+  for (int k = 0; k < 600 && app.session().problem().kind == Problem::Kind::none; ++k)
+    app.frame();
+  const Problem& problem = app.session().problem();
+  REQUIRE(problem.kind == Problem::Kind::diverged);
+  CHECK(problem.time > 0);
+  CHECK(problem.particle >= 0);
+  CHECK_THAT(problem.headline, Catch::Matchers::StartsWith("The simulation diverged at t = "));
+  CHECK_THAT(problem.detail, Catch::Matchers::Contains("beyond the stability limit"));
+  CHECK_FALSE(app.session().running());
+  const double stopped = app.session().time();
+  app.frame();  // ImGui sizes a new window in its first frame and draws it from the second
+  app.frame(true);
+  app.captured().saveToFile(shot("divergence"));
+  CHECK(app.session().time() == stopped);  // paused
+  REQUIRE(app.panel().banner_shown());
+  const WidgetRect banner = *app.panel().rect("banner");
+  const sf::Color inside = pixel_at(app.captured(), {banner.left + 4, banner.top + 4});
+  INFO("banner pixel " << text(inside));
+  CHECK((inside.r > 100 && inside.g < 60 && inside.b < 60));  // the banner's red
+
+  click(app, centre_of(*app.panel().rect("banner reset")));
+  CHECK(app.session().problem().kind == Problem::Kind::none);
+  CHECK(app.session().running());
+  app.frame();
+  CHECK_FALSE(app.panel().banner_shown());
+}
+
+TEST_CASE("a click and drag on a slider changes the scene's parameter", "[viewer][input]") {
+  App app(options_for("task4"));
+  app.frame();
+  const auto slider = app.panel().rect("structural.k");
+  REQUIRE(slider);
+  INFO("slider at " << slider->left << ".." << slider->right << ", " << slider->top);
+  REQUIRE(slider->bottom < float(app.window().getSize().y));
+  const float y = (slider->top + slider->bottom) / 2;
+  const float width = slider->right - slider->left;
+  drag(app, {slider->left + 0.5f * width, y}, {slider->left + 0.8f * width, y});
+  const double k = app.session().parameters().structural.k;
+  CHECK(k > 20.0);
+  // The running simulation uses it at once, without a reset.
+  REQUIRE(app.session().primary() != nullptr);
+  CHECK(app.session().primary()->scene().springs.front().k == k);
+  CHECK(app.session().time() > 0.1);
+}
+
+TEST_CASE("a particle dragged with the mouse follows it, and is let go where it is dropped",
+          "[viewer][input]") {
+  App app(options_for("task4"));
+  app.frame();
+  const Vec2 start = app.session().primary()->particles().position.col(4);
+  const sf::Vector2f from = app.camera().to_screen(start);
+  // Mouse events carry whole pixels.
+  const sf::Vector2f to(std::round(from.x) + 60, std::round(from.y) - 40);
+  app.handle(mouse_moved(from));
+  app.frame();
+  app.handle(mouse_button(true, sf::Mouse::Left, from));
+  app.frame();
+  app.handle(mouse_moved(to));
+  for (int k = 0; k < 10; ++k)
+    app.frame();  // held there while the rest moves
+  const Vec2 held = app.session().primary()->particles().position.col(4);
+  CHECK((held - app.camera().to_world(to)).norm() < 1e-9);
+  const Vec2 velocity = app.session().primary()->particles().velocity.col(4);
+  CAPTURE(velocity.x(), velocity.y());
+  CHECK(velocity.norm() < 1e-12);  // Verlet's (4.4) rounds 3r - 4r + r to ~1e-17, not 0
+  app.handle(mouse_button(false, sf::Mouse::Left, to));
+  for (int k = 0; k < 10; ++k)
+    app.frame();
+  CHECK_FALSE(app.session().pinned(4));
+  CHECK((app.session().primary()->particles().position.col(4) - held).norm() > 1e-6);
+}
+
+TEST_CASE("the student's unwritten task shows its message, and the reference is one click away",
+          "[viewer][student]") {
+  for (const std::string& scene : task_scene_names()) {
+    App app(options_for(scene));
+    app.session().set_code(Code::student);
+    for (int k = 0; k < 5; ++k)
+      app.frame();
+    const int task = app.session().task();
+    INFO(scene);
+    const Problem& problem = app.session().problem();
+    REQUIRE(problem.kind == Problem::Kind::not_implemented);
+    CHECK(problem.headline == "Task " + std::to_string(task) +
+                                  " is not implemented yet \u2014 see handout section " +
+                                  std::to_string(task));
+    CHECK_THAT(problem.detail, Catch::Matchers::Contains("tasks/task" + std::to_string(task)));
+    app.frame(true);
+    CHECK(app.panel().banner_shown());
+    if (task == 2) app.captured().saveToFile(shot("student-task2"));
+    // The comparison mode with the unwritten code says the same, and does not crash either.
+    app.session().set_compare(Compare::side_by_side);
+    app.session().set_running(true);
+    app.frame();
+    CHECK(app.session().problem().kind == Problem::Kind::not_implemented);
+  }
+}
+
+TEST_CASE("side by side and overlaid, the student's run and the reference are both drawn",
+          "[viewer][compare]") {
+  App app(options_for("task4"));
+  // The reference stands in for finished student code: the two runs must then agree exactly.
+  app.session().student_code = [](int) -> const Implementation& {
+    return reference_implementation();
+  };
+  app.session().set_compare(Compare::side_by_side);
+  CHECK(app.session().reference() == nullptr);  // only the student's code is compared
+  app.session().set_code(Code::student);
+  REQUIRE(app.session().reference() != nullptr);
+  for (int k = 0; k < 20; ++k)
+    app.frame();
+  app.frame(true);
+  app.captured().saveToFile(shot("compare-side-by-side"));
+  CHECK(app.session().largest_difference() == 0.0);
+  CHECK(app.camera(1).viewport().left == Approx(app.camera(0).viewport().width));
+  for (int view : {0, 1}) {
+    const Simulation& sim = view == 0 ? *app.session().primary() : *app.session().reference();
+    for (int i = 0; i < sim.particles().size(); ++i) {
+      const sf::Vector2f at = app.camera(view).to_screen(sim.particles().position.col(i));
+      INFO("view " << view << ", particle " << i);
+      CHECK(app.camera(view).viewport().contains(at));
+      CHECK(text(pixel_at(app.captured(), at)) == text(colour::particle));
+    }
+  }
+  app.session().set_compare(Compare::overlay);
+  for (int k = 0; k < 5; ++k)
+    app.frame();
+  app.frame(true);
+  app.captured().saveToFile(shot("compare-overlay"));
+  CHECK(app.session().reference() != nullptr);
+  CHECK(app.session().problem().kind == Problem::Kind::none);
+}
+
+TEST_CASE("the keyboard and the wheel reach the panel and the view", "[viewer][keys]") {
+  App app(options_for("task4"));
+  app.frame();
+  // Type a scene file's path into the panel and load it.
+  const std::string path = std::filesystem::absolute(shot("wide")).replace_extension(".toml");
+  std::ofstream(path) << "name = \"wide\"\ntask = 3\nrows = 2\ncols = 5\nshear.enabled = true\n";
+  click(app, centre_of(*app.panel().rect("scene file")));
+  for (char c : path) {
+    sf::Event typed;
+    typed.type = sf::Event::TextEntered;
+    typed.text.unicode = sf::Uint32(c);
+    app.handle(typed);
+  }
+  app.frame();
+  click(app, centre_of(*app.panel().rect("load")));
+  CHECK(app.session().source() == path);
+  CHECK(app.session().parameters().name == "wide");
+  REQUIRE(app.session().primary() != nullptr);
+  CHECK(app.session().primary()->particles().size() == 10);
+
+  // Space pauses (once the text field has let the keyboard go), the wheel zooms.
+  click(app, app.camera().viewport().centre() + sf::Vector2f(0, 250));
+  sf::Event key;
+  key.type = sf::Event::KeyPressed;
+  key.key = {sf::Keyboard::Space, false, false, false, false};
+  app.handle(key);
+  app.frame();
+  CHECK_FALSE(app.session().running());
+  const double scale = app.camera().pixels_per_metre();
+  sf::Event wheel;
+  wheel.type = sf::Event::MouseWheelScrolled;
+  wheel.mouseWheelScroll = {sf::Mouse::VerticalWheel, 2.0f, 300, 300};
+  app.handle(mouse_moved({300, 300}));
+  app.handle(wheel);
+  app.frame();
+  CHECK(app.camera().pixels_per_metre() > scale);
+
+  // Shift+click pushes the particle under the mouse by the panel's push velocity.
+  const sf::Vector2f at =
+      app.camera().to_screen(app.session().primary()->particles().position.col(0));
+  const Vec2 before = app.session().primary()->particles().velocity.col(0);
+  key.key = {sf::Keyboard::LShift, false, true, false, false};
+  app.handle(key);
+  click(app, {std::round(at.x), std::round(at.y)});
+  const Vec2 v = app.session().primary()->particles().velocity.col(0);
+  CHECK((v - before - app.settings().push_velocity).norm() < 1e-12);
+}
+
+TEST_CASE("a grid too large for OpenGL lines is drawn in memory, each particle where it is",
+          "[viewer][draw]") {
+  App app(options_for("task2"));
+  app.session().parameters().rows = app.session().parameters().cols = 70;  // 9,660 springs
+  app.session().apply();
+  for (int k = 0; k < 10; ++k)
+    app.frame();
+  app.frame(true);
+  app.captured().saveToFile(shot("draw-large"));
+  const Simulation& sim = *app.session().primary();
+  REQUIRE(sim.scene().springs.size() > 5000);
+  int wrong = 0;
+  for (int i = 0; i < sim.particles().size(); ++i) {
+    const sf::Vector2f at = app.camera().to_screen(sim.particles().position.col(i));
+    if (pixel_at(app.captured(), at) != colour::particle) ++wrong;
+  }
+  CHECK(wrong == 0);
+}

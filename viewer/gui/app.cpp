@@ -1,0 +1,261 @@
+#include "gui/app.hpp"
+
+#include "gui/resident_driver.hpp"
+#include "gui/scene_drawing.hpp"
+
+#include <imgui.h>
+
+#include <SFML/Graphics/Texture.hpp>
+#include <SFML/Graphics/View.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+namespace springlab::view {
+namespace {
+
+sf::ContextSettings context() {
+  sf::ContextSettings settings;
+  settings.antialiasingLevel = 0;  // identical pixels on every machine, and cheap in software
+  return settings;
+}
+
+// A "1 m"-style scale bar: the largest 1, 2 or 5 × 10^k metres under 120 pixels.
+double scale_bar_metres(double pixels_per_metre) {
+  const double most = 120.0 / pixels_per_metre;
+  const double power = std::pow(10.0, std::floor(std::log10(most)));
+  for (double step : {5.0, 2.0, 1.0})
+    if (step * power <= most) return step * power;
+  return power;
+}
+
+}  // namespace
+
+App::App(const AppOptions& options)
+    : options_(options),
+      window_(sf::VideoMode(options.width, options.height), "springlab viewer", sf::Style::Default,
+              context()),
+      glue_(window_),
+      session_(options.scene) {
+  if (options.frame_rate_limit) window_.setFramerateLimit(60);
+  keep_gl_driver_loaded();
+  layout();
+}
+
+int App::views() const {
+  return session_.compare() == Compare::side_by_side && session_.reference() ? 2 : 1;
+}
+
+const Simulation* App::simulation_of(int view) const {
+  return view == 0 ? session_.primary() : session_.reference();
+}
+
+void App::layout() {
+  const sf::Vector2u size = window_.getSize();
+  const float width = std::max(float(size.x) - Panel::width, 100.0f) / float(views());
+  const float height = std::max(float(size.y) - Panel::plot_height, 100.0f);
+  for (int v = 0; v < 2; ++v)
+    cameras_[std::size_t(v)].set_viewport({float(v) * width, 0.0f, width, height});
+}
+
+void App::fit() {
+  layout();
+  for (int v = 0; v < views(); ++v)
+    if (const Simulation* sim = simulation_of(v))
+      cameras_[std::size_t(v)].fit(sim->particles().position, sim->parameters().spacing);
+}
+
+int App::view_at(sf::Vector2f point) const {
+  for (int v = 0; v < views(); ++v)
+    if (cameras_[std::size_t(v)].viewport().contains(point)) return v;
+  return -1;
+}
+
+int App::hovered() const {
+  const int view = view_at(mouse_);
+  const Simulation* sim = view >= 0 ? simulation_of(view) : nullptr;
+  if (!sim || glue_.wants_mouse()) return -1;
+  return particle_at(*sim, cameras_[std::size_t(view)], mouse_);
+}
+
+void App::handle(const sf::Event& event) {
+  glue_.handle(event);
+  switch (event.type) {
+    case sf::Event::Closed:
+      window_.close();
+      break;
+    case sf::Event::Resized:
+      window_.setView(
+          sf::View(sf::FloatRect(0, 0, float(event.size.width), float(event.size.height))));
+      fit();
+      break;
+    case sf::Event::MouseMoved: {
+      const sf::Vector2f now(float(event.mouseMove.x), float(event.mouseMove.y));
+      if (session_.grabbed() >= 0 && view_at(now) >= 0)
+        session_.drag_to(cameras_[std::size_t(view_at(now))].to_world(now));
+      else if (panning_)
+        for (Camera& camera : cameras_)
+          camera.pan(now - mouse_);
+      mouse_ = now;
+      break;
+    }
+    case sf::Event::MouseButtonPressed:
+      mouse_ = sf::Vector2f(float(event.mouseButton.x), float(event.mouseButton.y));
+      if (!glue_.wants_mouse()) on_press(event.mouseButton);
+      break;
+    case sf::Event::MouseButtonReleased:
+      if (event.mouseButton.button == sf::Mouse::Left) {
+        session_.release();
+        panning_ = false;
+      }
+      break;
+    case sf::Event::MouseWheelScrolled:
+      if (!glue_.wants_mouse() && view_at(mouse_) >= 0)
+        for (Camera& camera : cameras_)
+          camera.zoom(std::pow(1.15, double(event.mouseWheelScroll.delta)), mouse_);
+      break;
+    case sf::Event::KeyPressed:
+      if (event.key.code == sf::Keyboard::LShift || event.key.code == sf::Keyboard::RShift)
+        shift_ = true;
+      else if (!glue_.wants_keyboard())
+        on_key(event.key.code);
+      break;
+    case sf::Event::KeyReleased:
+      if (event.key.code == sf::Keyboard::LShift || event.key.code == sf::Keyboard::RShift)
+        shift_ = false;
+      break;
+    default:
+      break;
+  }
+}
+
+void App::on_press(const sf::Event::MouseButtonEvent& button) {
+  const int view = view_at(mouse_);
+  const Simulation* sim = view >= 0 ? simulation_of(view) : nullptr;
+  if (!sim) return;
+  const Camera& camera = cameras_[std::size_t(view)];
+  const int particle = particle_at(*sim, camera, mouse_);
+  if (particle >= 0) settings_.selected = particle;
+  if (button.button == sf::Mouse::Right && particle >= 0) {
+    session_.toggle_pin(particle);
+  } else if (button.button == sf::Mouse::Left && particle >= 0 && shift_) {
+    session_.push(particle, settings_.push_velocity);
+  } else if (button.button == sf::Mouse::Left && particle >= 0) {
+    session_.grab(particle);
+    session_.drag_to(camera.to_world(mouse_));
+  } else if (button.button == sf::Mouse::Left) {
+    panning_ = true;
+  }
+}
+
+void App::on_key(sf::Keyboard::Key key) {
+  switch (key) {
+    case sf::Keyboard::Space:
+      session_.set_running(!session_.running());
+      break;
+    case sf::Keyboard::S:
+    case sf::Keyboard::Right:
+      session_.single_step();
+      break;
+    case sf::Keyboard::R:
+      session_.reset();
+      break;
+    case sf::Keyboard::F:
+      fit();
+      break;
+    default:
+      break;
+  }
+}
+
+void App::frame(bool capture) {
+  sf::Event event;
+  while (window_.pollEvent(event))
+    handle(event);
+  if (!window_.isOpen()) return;
+  info_.frame_seconds = clock_.restart().asSeconds();
+  glue_.new_frame(options_.fixed_frame_time ? 1.0f / 60.0f : float(info_.frame_seconds));
+  layout();
+  info_.hovered = hovered();
+  Viewport scene_area = cameras_[0].viewport();
+  scene_area.width *= float(views());
+  const PanelRequests requests = panel_.draw(session_, settings_, info_, scene_area);
+  layout();  // the panel may have switched the comparison on or off
+  if (requests.fit || fitted_to_ != session_.fresh_starts()) {
+    fit();
+    fitted_to_ = session_.fresh_starts();
+  }
+  const auto start = std::chrono::steady_clock::now();
+  info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
+  info_.stepping_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  draw();
+  if (capture) {
+    sf::Texture texture;
+    texture.create(window_.getSize().x, window_.getSize().y);
+    texture.update(window_);
+    captured_ = texture.copyToImage();
+  }
+  window_.display();
+}
+
+void App::draw() {
+  window_.clear(colour::background);
+  const sf::View whole = window_.getView();
+  const sf::Vector2u size = window_.getSize();
+  const int highlighted = session_.problem().kind == Problem::Kind::diverged
+                              ? session_.problem().particle
+                              : info_.hovered;
+  for (int v = 0; v < views(); ++v) {
+    const Camera& camera = cameras_[std::size_t(v)];
+    const Viewport& area = camera.viewport();
+    // A view per viewport clips each run to its half in side-by-side mode.
+    sf::View clip(sf::FloatRect(area.left, area.top, area.width, area.height));
+    clip.setViewport(sf::FloatRect(area.left / float(size.x), area.top / float(size.y),
+                                   area.width / float(size.x), area.height / float(size.y)));
+    window_.setView(clip);
+    DrawOptions options = settings_.draw;
+    if (v == 0 && session_.compare() == Compare::overlay && session_.reference()) {
+      DrawOptions ghost = options;
+      ghost.ghost = true;
+      draw_scene(window_, *session_.reference(), camera, ghost);
+    }
+    const Simulation* sim = simulation_of(v);
+    if (!sim) continue;
+    options.highlighted = highlighted;
+    draw_scene(window_, *sim, camera, options);
+    if (settings_.force_arrows && info_.hovered >= 0 && session_.grabbed() < 0)
+      draw_force_arrows(window_, *sim, camera, info_.hovered);
+  }
+  window_.setView(whole);
+  draw_labels();
+  glue_.render();
+}
+
+void App::draw_labels() {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  const ImU32 text = IM_COL32(200, 200, 210, 255);
+  const Viewport& area = cameras_[0].viewport();
+  const double metres = scale_bar_metres(cameras_[0].pixels_per_metre());
+  const float pixels = float(metres * cameras_[0].pixels_per_metre());
+  const ImVec2 left(area.left + 20, area.top + area.height - 20);
+  draw->AddLine(left, ImVec2(left.x + pixels, left.y), text, 2.0f);
+  char label[32];
+  std::snprintf(label, sizeof label, "%g m", metres);
+  draw->AddText(ImVec2(left.x, left.y - 18), text, label);
+  std::snprintf(label, sizeof label, "t = %.2f s", session_.time());
+  draw->AddText(ImVec2(area.left + 20, area.top + 10), text, label);
+  if (views() == 2) {
+    draw->AddText(ImVec2(area.left + 20, area.top + 30), text, "your code");
+    const Viewport& right = cameras_[1].viewport();
+    draw->AddText(ImVec2(right.left + 20, right.top + 30), text, "the reference");
+    draw->AddLine(ImVec2(right.left, right.top), ImVec2(right.left, right.top + right.height),
+                  IM_COL32(80, 80, 90, 255));
+  } else if (session_.reference()) {
+    draw->AddText(ImVec2(area.left + 20, area.top + 30), text,
+                  "yours in colour, the reference in blue");
+  }
+}
+
+}  // namespace springlab::view

@@ -1,0 +1,68 @@
+// The Dear ImGui panel beside the scene: what runs (scene, code, comparison), how it is stepped
+// (integrator, h with its critical step, pacing), every scene parameter, what is shown, the
+// particle under the mouse, live plots, and the banner when something went wrong.
+#pragma once
+
+#include "gui/camera.hpp"
+#include "gui/parameter_widgets.hpp"
+#include "gui/scene_drawing.hpp"
+#include "gui/session.hpp"
+
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+
+namespace springlab::view {
+
+/// What the user chose to see and do, beyond the simulation itself.
+struct ViewSettings {
+  DrawOptions draw;
+  bool force_arrows = true;
+  int selected = -1;             ///< the particle the panel describes (last clicked)
+  Vec2 push_velocity{0.0, 2.0};  ///< m/s, added by a push
+};
+
+/// How the last frame went, for the panel's read-outs.
+struct FrameInfo {
+  double frame_seconds = 0.0;     ///< wall time of the last frame
+  double stepping_seconds = 0.0;  ///< of which stepping the simulation
+  long steps = 0;                 ///< steps taken in the last frame
+  int hovered = -1;               ///< particle under the mouse
+};
+
+struct PanelRequests {
+  bool fit = false;  ///< fit the view to the scene
+};
+
+class Panel {
+ public:
+  static constexpr float width = 400.0f;        // pixels, at the window's right edge
+  static constexpr float plot_height = 170.0f;  // pixels, the plots under the scene
+
+  PanelRequests draw(Session& session, ViewSettings& settings, const FrameInfo& frame,
+                     const Viewport& scene_area);
+
+  /// The rectangle of a widget drawn in the last frame: a parameter key ("structural.k",
+  /// "step", …) or "run", "step once", "reset", "scene file", "load", "banner", "banner reset".
+  std::optional<WidgetRect> rect(const std::string& name) const;
+  /// Whether the banner (a problem) was shown in the last frame.
+  bool banner_shown() const { return banner_shown_; }
+
+ private:
+  void scene_section(Session& session);
+  void run_section(Session& session, PanelRequests& requests);
+  void stepping_section(Session& session, const FrameInfo& frame);
+  void display_section(Session& session, ViewSettings& settings);
+  void particle_section(Session& session, ViewSettings& settings, const FrameInfo& frame);
+  void plots(const Session& session, const Viewport& scene_area);
+  void banner(Session& session, const Viewport& scene_area);
+  void remember(const std::string& name);
+
+  ParameterWidgets parameters_;
+  std::map<std::string, WidgetRect> rects_;
+  std::array<char, 512> file_{};
+  bool banner_shown_ = false;
+};
+
+}  // namespace springlab::view

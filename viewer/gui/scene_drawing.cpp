@@ -1,0 +1,207 @@
+#include "gui/scene_drawing.hpp"
+
+#include "gui/pixel_canvas.hpp"
+
+#include <SFML/Graphics/Vertex.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+namespace springlab::view {
+namespace {
+
+// Springs are thick lines drawn by OpenGL up to this many; beyond, hairlines drawn in memory.
+constexpr std::size_t thick_spring_limit = 5000;
+constexpr int square_dot_limit = 2000;  // particles beyond which dots are drawn as squares
+
+sf::Color mix(sf::Color a, sf::Color b, double t) {
+  const auto channel = [t](sf::Uint8 x, sf::Uint8 y) {
+    return static_cast<sf::Uint8>(std::lround(double(x) + (double(y) - double(x)) * t));
+  };
+  return {channel(a.r, b.r), channel(a.g, b.g), channel(a.b, b.b), channel(a.a, b.a)};
+}
+
+sf::Color strain_colour(const Spring& s, const Vectors& r, double scale) {
+  const double strain = ((r.col(s.p) - r.col(s.q)).norm() - s.rest_length) / s.rest_length;
+  const double t = std::clamp(strain / scale, -1.0, 1.0);
+  return t >= 0 ? mix(colour::at_rest, colour::stretched, t)
+                : mix(colour::at_rest, colour::compressed, -t);
+}
+
+sf::Color faded(sf::Color c, bool ghost) {
+  return ghost ? sf::Color(colour::ghost.r, colour::ghost.g, colour::ghost.b, 110) : c;
+}
+
+bool finite(sf::Vector2f p) {
+  return std::isfinite(p.x) && std::isfinite(p.y);
+}
+
+// A segment `width` pixels wide as two triangles.
+void add_segment(std::vector<sf::Vertex>& triangles, sf::Vector2f a, sf::Vector2f b, float width,
+                 sf::Color c) {
+  const sf::Vector2f d = b - a;
+  const float length = std::hypot(d.x, d.y);
+  if (!(length > 0.0f)) return;
+  const sf::Vector2f n(-d.y / length * width / 2, d.x / length * width / 2);
+  for (sf::Vector2f p : {a + n, a - n, b + n, b + n, a - n, b - n})
+    triangles.emplace_back(p, c);
+}
+
+// A dot as an octagon (fan of triangles), or a pinned particle as a square (two triangles).
+// Large grids draw every particle as a square: an octagon costs four times the vertices, which
+// software OpenGL feels at 10,000 particles, and at a few pixels the two look alike.
+void add_dot(std::vector<sf::Vertex>& triangles, sf::Vector2f centre, float radius, bool square,
+             sf::Color c) {
+  static const auto octagon = [] {
+    std::array<sf::Vector2f, 9> corners;
+    for (std::size_t k = 0; k < corners.size(); ++k) {
+      const double a = 2 * std::numbers::pi * double(k) / 8;
+      corners[k] = {float(std::cos(a)), float(std::sin(a))};
+    }
+    return corners;
+  }();
+  if (square) {
+    const sf::Vector2f a = centre + sf::Vector2f(-radius, -radius);
+    const sf::Vector2f b = centre + sf::Vector2f(radius, -radius);
+    const sf::Vector2f d = centre + sf::Vector2f(-radius, radius);
+    const sf::Vector2f e = centre + sf::Vector2f(radius, radius);
+    for (sf::Vector2f p : {a, b, d, d, b, e})
+      triangles.emplace_back(p, c);
+    return;
+  }
+  for (std::size_t k = 0; k < 8; ++k) {
+    triangles.emplace_back(centre, c);
+    triangles.emplace_back(centre + octagon[k] * radius, c);
+    triangles.emplace_back(centre + octagon[k + 1] * radius, c);
+  }
+}
+
+void add_arrow(std::vector<sf::Vertex>& triangles, sf::Vector2f from, sf::Vector2f to, float width,
+               sf::Color c) {
+  const sf::Vector2f d = to - from;
+  const float length = std::hypot(d.x, d.y);
+  if (!(length > 2.0f)) return;
+  const sf::Vector2f u = d / length, n(-u.y, u.x);
+  const float head = std::min(length / 2, 4.0f * width + 4.0f);
+  const sf::Vector2f base = to - u * head;
+  add_segment(triangles, from, base, width, c);
+  for (sf::Vector2f p : {to, base + n * (head / 2), base - n * (head / 2)})
+    triangles.emplace_back(p, c);
+}
+
+// The spring and damper force on particle `at` from spring s (N).
+Vec2 force_of(const Implementation& impl, const Spring& s, const Particles& p, int at) {
+  const int other = s.p == at ? s.q : s.p;
+  return impl.spring_force(p.position.col(at), p.position.col(other), s.k, s.rest_length) +
+         impl.damper_force(p.velocity.col(at), p.velocity.col(other), s.b);
+}
+
+}  // namespace
+
+float particle_radius(const Camera& camera, double spacing) {
+  // A tenth of the spacing, but large enough to see unless the grid itself is that dense.
+  const float apart = static_cast<float>(spacing * camera.pixels_per_metre());
+  return std::clamp(0.1f * apart, std::min(2.5f, 0.2f * apart), 11.0f);
+}
+
+void draw_scene(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
+                const DrawOptions& options) {
+  const Particles& particles = sim.particles();
+  const Vectors& r = particles.position;
+  const auto& springs = sim.scene().springs;
+  // Reused from frame to frame: large scenes are drawn in memory (pixel_canvas.hpp).
+  static std::vector<sf::Vertex> lines, dots;
+  static PixelCanvas canvas;
+  const bool in_memory = springs.size() > thick_spring_limit;
+  lines.clear();
+  dots.clear();
+  if (in_memory) canvas.begin(camera.viewport());
+  const float width = std::clamp(particle_radius(camera, sim.parameters().spacing) / 3, 1.0f, 3.0f);
+  for (const Spring& s : springs) {
+    if (options.hidden_families.count(int(s.family))) continue;
+    const sf::Vector2f a = camera.to_screen(r.col(s.p)), b = camera.to_screen(r.col(s.q));
+    if (!finite(a) || !finite(b)) continue;
+    const sf::Color c = faded(strain_colour(s, r, options.strain_scale), options.ghost);
+    if (in_memory)
+      canvas.line(a, b, c);
+    else
+      add_segment(lines, a, b, width, c);
+  }
+  target.draw(lines.data(), lines.size(), sf::Triangles);
+
+  const float radius = particle_radius(camera, sim.parameters().spacing);
+  const bool squares = particles.size() > square_dot_limit;
+  for (int i = 0; i < particles.size(); ++i) {
+    const sf::Vector2f at = camera.to_screen(r.col(i));
+    if (!finite(at)) continue;
+    const bool pinned = particles.pinned[std::size_t(i)];
+    const float size = i == options.highlighted ? 1.8f : pinned ? 1.3f : 1.0f;
+    const sf::Color c = faded(pinned ? colour::pinned : colour::particle, options.ghost);
+    if (in_memory) {
+      if (i == options.highlighted) canvas.square(at, radius * size, colour::highlight);
+      canvas.square(at, radius * (pinned ? 1.3f : 1.0f), c);
+      continue;
+    }
+    if (i == options.highlighted) add_dot(dots, at, radius * size, squares, colour::highlight);
+    add_dot(dots, at, radius * (pinned ? 1.3f : 1.0f), squares || pinned, c);
+  }
+  target.draw(dots.data(), dots.size(), sf::Triangles);
+  if (in_memory) canvas.draw(target);
+}
+
+Vec2 spring_force_on(const Simulation& sim, int particle) {
+  Vec2 total = Vec2::Zero();
+  try {
+    for (const Spring& s : sim.scene().springs)
+      if (s.p == particle || s.q == particle)
+        total += force_of(sim.implementation(), s, sim.particles(), particle);
+  } catch (const std::exception&) {
+    return Vec2::Zero();  // the student's force is not written yet: the banner says so
+  }
+  return total;
+}
+
+void draw_force_arrows(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
+                       int particle) {
+  const Particles& particles = sim.particles();
+  if (particle < 0 || particle >= particles.size()) return;
+  const SceneParameters& p = sim.parameters();
+  const double newtons_per_spacing =
+      std::max(0.2 * p.structural.k * p.structural.rest_length, 1e-9);
+  const double metres_per_newton = p.spacing / newtons_per_spacing;
+  const Vec2 at = particles.position.col(particle);
+  std::vector<sf::Vertex> arrows;
+  Vec2 total = Vec2::Zero();
+  try {
+    for (const Spring& s : sim.scene().springs) {
+      if (s.p != particle && s.q != particle) continue;
+      const Vec2 f = force_of(sim.implementation(), s, particles, particle);
+      total += f;
+      add_arrow(arrows, camera.to_screen(at), camera.to_screen(at + f * metres_per_newton), 2.0f,
+                mix(colour::at_rest, sf::Color::White, 0.5));
+    }
+  } catch (const std::exception&) {
+    return;
+  }
+  add_arrow(arrows, camera.to_screen(at), camera.to_screen(at + total * metres_per_newton), 3.5f,
+            colour::net_force);
+  target.draw(arrows.data(), arrows.size(), sf::Triangles);
+}
+
+int particle_at(const Simulation& sim, const Camera& camera, sf::Vector2f screen) {
+  const Vectors& r = sim.particles().position;
+  const float reach = std::max(particle_radius(camera, sim.parameters().spacing) * 1.5f, 6.0f);
+  int best = -1;
+  float best_distance = reach * reach;
+  for (int i = 0; i < sim.particles().size(); ++i) {
+    const sf::Vector2f d = camera.to_screen(r.col(i)) - screen;
+    const float distance = d.x * d.x + d.y * d.y;
+    if (distance <= best_distance) best_distance = distance, best = i;
+  }
+  return best;
+}
+
+}  // namespace springlab::view

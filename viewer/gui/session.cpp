@@ -1,0 +1,329 @@
+#include "gui/session.hpp"
+
+#include "springlab/errors.hpp"
+#include "springlab/scene.hpp"
+#include "springlab/stability.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace springlab::view {
+namespace {
+
+// A dense eigen-solve per change of a parameter: only small scenes get an estimate.
+constexpr int critical_step_particle_limit = 100;
+
+void push_capped(std::vector<float>& series, double value) {
+  if (series.size() == History::capacity) series.erase(series.begin());
+  // A runaway energy can exceed what a float holds; the plot shows it pinned at the top.
+  const double largest = std::numeric_limits<float>::max();
+  series.push_back(
+      static_cast<float>(std::isnan(value) ? value : std::clamp(value, -largest, largest)));
+}
+
+// Every field as text: a cheap key that changes whenever the parameters do.
+std::string fingerprint(const SceneParameters& p) {
+  std::ostringstream out;
+  out.precision(17);
+  for_each_field(p, [&](const FieldInfo& info, const auto& value) {
+    // Fields that text cannot show (none yet) still count by their key.
+    if constexpr (requires { out << value; })
+      if (info.key != "step") out << info.key << '=' << value << ';';
+  });
+  return out.str();
+}
+
+Problem problem_of(Problem::Kind kind, std::string headline, std::string detail) {
+  Problem problem;
+  problem.kind = kind;
+  problem.headline = std::move(headline);
+  problem.detail = std::move(detail);
+  return problem;
+}
+
+}  // namespace
+
+void History::add(double t, const Diagnostics& d) {
+  push_capped(time, t);
+  push_capped(kinetic, d.kinetic);
+  push_capped(potential, d.potential);
+  push_capped(total, d.total());
+  push_capped(momentum_x, d.momentum.x());
+  push_capped(momentum_y, d.momentum.y());
+}
+
+void History::clear() {
+  for (auto* series : {&time, &kinetic, &potential, &total, &momentum_x, &momentum_y})
+    series->clear();
+}
+
+Session::Session(const std::string& name_or_path) {
+  load(name_or_path);
+}
+
+void Session::load(const std::string& name_or_path) {
+  source_ = name_or_path;
+  try {
+    loaded_ = load_scene(name_or_path);
+  } catch (const std::exception& error) {
+    loaded_ = task_scene(1);  // something to edit; the problem says why it is not the file
+    parameters_ = loaded_;
+    primary_.reset();
+    reference_.reset();
+    problem_ = problem_of(Problem::Kind::invalid,
+                          "The scene \"" + name_or_path + "\" cannot be loaded", error.what());
+    running_ = false;
+    return;
+  }
+  parameters_ = loaded_;
+  reset();
+}
+
+void Session::reset() {
+  toggled_pins_.clear();
+  grabbed_ = -1;
+  rebuild(false);
+  running_ = primary_ != nullptr;
+}
+
+void Session::apply() {
+  // A smaller grid keeps its displaced particle (the last one in the task scenes) inside it,
+  // rather than refusing the new size.
+  const int particles = parameters_.rows * parameters_.cols;
+  if (particles >= 2 && parameters_.displaced_particle >= particles)
+    parameters_.displaced_particle = particles - 1;
+  rebuild(true);
+}
+
+void Session::set_code(Code code) {
+  code_ = code;
+  rebuild(true);
+}
+
+void Session::set_compare(Compare compare) {
+  compare_ = compare;
+  rebuild(true);
+}
+
+void Session::set_running(bool running) {
+  running_ = running && primary_ && problem_.kind == Problem::Kind::none;
+}
+
+std::unique_ptr<Simulation> Session::make(const Implementation& impl,
+                                          const Simulation* previous) const {
+  Scene scene = build_scene(parameters_, impl);
+  Particles& particles = scene.particles;
+  for (int i : toggled_pins_)
+    if (i < particles.size()) particles.pinned[std::size_t(i)] = !particles.pinned[std::size_t(i)];
+  if (previous) {
+    particles.position = previous->particles().position;
+    particles.velocity = previous->particles().velocity;
+  }
+  for (int i = 0; i < particles.size(); ++i)
+    if (particles.pinned[std::size_t(i)]) particles.velocity.col(i).setZero();
+  return std::make_unique<Simulation>(std::move(scene), impl);
+}
+
+void Session::rebuild(bool keep_state) {
+  // Carry the motion over only from a healthy run of the same particles.
+  const bool keep = keep_state && primary_ && problem_.kind == Problem::Kind::none &&
+                    primary_->particles().size() == parameters_.rows * parameters_.cols;
+  const double elapsed = keep ? time() : 0.0;
+  const bool had_problem = problem_.kind != Problem::Kind::none;
+  std::unique_ptr<Simulation> old_primary = std::move(primary_),
+                              old_reference = std::move(reference_);
+  problem_ = {};
+  owed_steps_ = 0.0;
+  if (!keep) {
+    ++fresh_starts_;
+    toggled_pins_.clear();
+    history_.clear();
+    grabbed_ = -1;
+  }
+  try {
+    validate(parameters_);
+    const Implementation& impl =
+        code_ == Code::student ? student_code(parameters_.task) : reference_implementation();
+    primary_ = make(impl, keep ? old_primary.get() : nullptr);
+    if (compare_ != Compare::off && code_ == Code::student)
+      reference_ = make(reference_implementation(),
+                        keep ? (old_reference ? old_reference.get() : old_primary.get()) : nullptr);
+    time_offset_ = elapsed;
+    if (grabbed_ >= 0) {
+      const int held = grabbed_;
+      edit_each([&](Simulation& sim) { sim.set_pinned(held, true); });
+    }
+    if (history_.size() == 0) history_.add(time(), primary_->diagnostics());
+  } catch (const InvalidParameter& error) {
+    primary_.reset();
+    reference_.reset();
+    if (code_ == Code::student && error.field() == "task")
+      problem_ = problem_of(
+          Problem::Kind::invalid,
+          "Scene \"" + parameters_.name + "\" belongs to no lab task: no student code to run",
+          "Pick a task scene, or set task = N in the scene file. (" + std::string(error.what()) +
+              ")");
+    else
+      report(error, "");
+  } catch (const std::exception& error) {
+    primary_.reset();
+    reference_.reset();
+    report(error, "");
+  }
+  if (!primary_) running_ = false;
+  // A run stopped by a problem (not by the user) goes again once the problem is fixed.
+  if (had_problem && primary_) running_ = true;
+}
+
+void Session::report(const std::exception& error, const std::string& whose) {
+  running_ = false;
+  if (const auto* diverged = dynamic_cast<const DivergenceError*>(&error)) {
+    std::ostringstream headline;
+    headline << whose << "The simulation diverged at t = " << diverged->time() << " s";
+    // The banner says when and where on lines of their own; the detail keeps only the why.
+    std::string why = error.what();
+    const std::string where = diverged->quantity() + ": ";
+    if (const auto at = why.find(where); at != std::string::npos) why.erase(0, at + where.size());
+    problem_ = problem_of(Problem::Kind::diverged, headline.str(), "why: " + why);
+    problem_.time = diverged->time();
+    problem_.particle = diverged->particle();
+    problem_.quantity = diverged->quantity();
+  } else if (const auto* missing = dynamic_cast<const NotImplemented*>(&error)) {
+    const std::string task = std::to_string(missing->task());
+    problem_ =
+        problem_of(Problem::Kind::not_implemented,
+                   "Task " + task + " is not implemented yet \u2014 see handout section " + task,
+                   error.what());
+  } else if (dynamic_cast<const InvalidParameter*>(&error)) {
+    problem_ =
+        problem_of(Problem::Kind::invalid, whose + "A parameter is out of range", error.what());
+  } else {
+    problem_ =
+        problem_of(Problem::Kind::failed, whose + "The code under test failed", error.what());
+  }
+}
+
+double Session::time() const {
+  return time_offset_ + (primary_ ? primary_->time() : 0.0);
+}
+
+long Session::frame(double seconds) {
+  if (!running_ || !primary_) return 0;
+  long steps = pacing_.steps_per_frame;
+  if (pacing_.real_time) {
+    const double lasted = std::clamp(seconds, 0.0, pacing_.longest_frame);
+    owed_steps_ += pacing_.real_time_factor * lasted / parameters_.step;
+    // A tiny h can owe more steps than a frame may take (or a long holds): the rest is dropped.
+    const double due = std::floor(owed_steps_ + 1e-9);  // 3 × (1/3) is one whole step
+    steps = long(std::min(due, double(pacing_.max_steps_per_frame)));
+    owed_steps_ = due > double(steps) ? 0.0 : owed_steps_ - double(steps);
+  }
+  steps = std::clamp(steps, 0L, pacing_.max_steps_per_frame);
+  advance(steps);
+  return steps;
+}
+
+void Session::single_step() {
+  if (primary_ && problem_.kind == Problem::Kind::none) advance(1);
+}
+
+void Session::advance(long steps) {
+  for (long n = 0; n < steps && problem_.kind == Problem::Kind::none; ++n) {
+    try {
+      primary_->step();
+    } catch (const std::exception& error) {
+      report(error, code_ == Code::student && reference_ ? "Your code: " : "");
+    }
+    if (!reference_ || problem_.kind != Problem::Kind::none) continue;
+    try {
+      reference_->step();
+    } catch (const std::exception& error) {
+      report(error, "The reference: ");
+    }
+  }
+  if (steps > 0 && primary_) history_.add(time(), primary_->diagnostics());
+}
+
+double Session::largest_difference() const {
+  if (!primary_ || !reference_) return 0.0;
+  const Vectors& a = primary_->particles().position;
+  const Vectors& b = reference_->particles().position;
+  return (a - b).colwise().norm().maxCoeff();
+}
+
+std::optional<double> Session::critical_step() {
+  const std::string key = fingerprint(parameters_);
+  if (key == critical_key_) return critical_;
+  critical_key_ = key;
+  critical_.reset();
+  if (parameters_.rows * parameters_.cols > critical_step_particle_limit) {
+    critical_note_ =
+        "not estimated above " + std::to_string(critical_step_particle_limit) + " particles";
+    return critical_;
+  }
+  try {
+    validate(parameters_);
+    critical_ = springlab::critical_step(linearise_at_rest(parameters_, reference_implementation()),
+                                         parameters_.integrator);
+    critical_note_.clear();
+  } catch (const std::exception& error) {
+    critical_note_ = std::string("no estimate: ") + error.what();
+  }
+  return critical_;
+}
+
+template <class Edit>
+void Session::edit_each(Edit&& edit) {
+  for (Simulation* sim : {primary_.get(), reference_.get()})
+    if (sim) edit(*sim);
+}
+
+void Session::grab(int particle) {
+  if (!primary_ || particle < 0 || particle >= primary_->particles().size()) return;
+  release();
+  grabbed_ = particle;
+  grabbed_was_pinned_ = pinned(particle);
+  edit_each([&](Simulation& sim) { sim.set_pinned(particle, true); });
+}
+
+void Session::drag_to(const Vec2& position) {
+  if (grabbed_ < 0) return;
+  edit_each([&](Simulation& sim) { sim.set_particle(grabbed_, position, Vec2::Zero()); });
+}
+
+void Session::release() {
+  if (grabbed_ < 0) return;
+  const int held = grabbed_;
+  grabbed_ = -1;
+  if (!grabbed_was_pinned_) edit_each([&](Simulation& sim) { sim.set_pinned(held, false); });
+}
+
+void Session::toggle_pin(int particle) {
+  if (!primary_ || particle < 0 || particle >= primary_->particles().size()) return;
+  const bool pin = !pinned(particle);
+  if (!toggled_pins_.erase(particle)) toggled_pins_.insert(particle);
+  if (particle == grabbed_) {
+    grabbed_was_pinned_ = pin;
+    return;
+  }
+  edit_each([&](Simulation& sim) { sim.set_pinned(particle, pin); });
+}
+
+void Session::push(int particle, const Vec2& velocity_change) {
+  if (!primary_ || particle < 0 || particle >= primary_->particles().size()) return;
+  edit_each([&](Simulation& sim) {
+    const Particles& p = sim.particles();
+    sim.set_particle(particle, p.position.col(particle),
+                     p.velocity.col(particle) + velocity_change);
+  });
+}
+
+bool Session::pinned(int particle) const {
+  if (!primary_ || particle < 0 || particle >= primary_->particles().size()) return false;
+  if (particle == grabbed_) return grabbed_was_pinned_;
+  return primary_->particles().pinned[std::size_t(particle)];
+}
+
+}  // namespace springlab::view
