@@ -2,6 +2,7 @@
 
 #include "springlab/errors.hpp"
 #include "springlab/scene.hpp"
+#include "springlab/selection.hpp"
 #include "springlab/stability.hpp"
 
 #include <algorithm>
@@ -89,11 +90,22 @@ void Session::reset() {
 }
 
 void Session::apply() {
-  // A smaller grid keeps its displaced particle (the last one in the task scenes) inside it,
-  // rather than refusing the new size.
+  // A smaller grid keeps its particle sets inside it rather than refusing the new size: named
+  // sets (top-row, …) follow the grid; a list that no longer fits becomes the last particle
+  // (displaced, as in the task scenes) or none (pinned, pushed).
   const int particles = parameters_.rows * parameters_.cols;
-  if (particles >= 2 && parameters_.displaced_particle >= particles)
-    parameters_.displaced_particle = particles - 1;
+  const auto fit = [&](const char* field, std::string& set, const std::string& fallback) {
+    try {
+      select_particles(field, set, parameters_.rows, parameters_.cols);
+    } catch (const InvalidParameter&) {
+      set = fallback;
+    }
+  };
+  if (particles >= 2) {
+    fit("displaced", parameters_.displaced, std::to_string(particles - 1));
+    fit("pinned", parameters_.pinned, "none");
+    fit("pushed", parameters_.pushed, "none");
+  }
   rebuild(true);
 }
 
