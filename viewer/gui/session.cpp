@@ -270,16 +270,23 @@ std::optional<double> Session::critical_step() {
   if (key == critical_key_) return critical_;
   critical_key_ = key;
   critical_.reset();
-  if (parameters_.rows * parameters_.cols > critical_step_particle_limit) {
-    critical_note_ =
-        "not estimated above " + std::to_string(critical_step_particle_limit) + " particles";
-    return critical_;
-  }
   try {
     validate(parameters_);
-    critical_ = springlab::critical_step(linearise_at_rest(parameters_, reference_implementation()),
-                                         parameters_.integrator);
-    critical_note_.clear();
+    if (parameters_.rows * parameters_.cols <= critical_step_particle_limit) {
+      critical_ = springlab::critical_step(
+          linearise_at_rest(parameters_, reference_implementation()), parameters_.integrator);
+      critical_note_.clear();
+      return critical_;
+    }
+    // Larger scenes: no eigen-solve, an estimate from the bound on ω_max (stability.hpp).
+    const StabilityReport report = stability_report(parameters_, reference_implementation());
+    for (const StabilityReport::Limit& limit : report.limits)
+      if (limit.integrator == parameters_.integrator &&
+          limit.critical.source != LimitSource::not_computed)
+        critical_ = limit.critical.step;
+    critical_note_ = critical_ ? ""
+                               : "not estimated for this method above " +
+                                     std::to_string(critical_step_particle_limit) + " particles";
   } catch (const std::exception& error) {
     critical_note_ = std::string("no estimate: ") + error.what();
   }
