@@ -127,3 +127,36 @@ TEST_CASE("Energy: gravity's potential energy makes free fall conserve the total
   CHECK(end.kinetic > 1.0);
   CHECK_THAT(end.total(), WithinAbs(start, 1e-9 * end.kinetic));
 }
+
+TEST_CASE("A run continued from another goes on in time: the push and the wind do not restart",
+          "[core][push]") {
+  INFO("the viewer rebuilds a run when a parameter changes; continue_from keeps its clock");
+  SceneParameters p = task_scene(5);
+  p.rows = p.cols = 4;
+  p.pushed = "15";
+  p.push = Vec2(2.0, 0.0);
+  p.push_duration = 0.3;
+  p.integrator = "symplectic-euler";  // no memory of earlier steps: the two runs can agree exactly
+  Simulation whole(p, implementation());
+  whole.advance(70);
+  Simulation first(p, implementation());
+  first.advance(40);
+  Scene rest = build_scene(p, implementation());
+  rest.particles.position = first.particles().position;
+  rest.particles.velocity = first.particles().velocity;
+  Simulation second(std::move(rest), implementation());
+  second.continue_from(first);
+  CHECK_THAT(second.time(), WithinAbs(first.time(), 1e-15));
+  second.advance(30);
+  CHECK_THAT(second.time(), WithinAbs(whole.time(), 1e-12));
+  // Equal but for rounding in the time (0.4 + n h against (40 + n) h) that the wind samples.
+  CHECK((second.particles().position - whole.particles().position).cwiseAbs().maxCoeff() < 1e-12);
+  // Without continue_from the push would act again for 0.3 s: far more than rounding.
+  Scene again = build_scene(p, implementation());
+  again.particles.position = first.particles().position;
+  again.particles.velocity = first.particles().velocity;
+  Simulation restarted(std::move(again), implementation());
+  restarted.advance(30);
+  CHECK((restarted.particles().position - whole.particles().position).cwiseAbs().maxCoeff() > 1e-3);
+  CHECK_THAT(second.diagnostics().total(), WithinRel(whole.diagnostics().total(), 1e-12));
+}

@@ -179,6 +179,10 @@ double critical_step_by_bisection(const LinearModel& model, std::string_view int
 }
 
 CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator) {
+  if (!is_integrator_name(integrator))
+    throw InvalidParameter("integrator", "\"" + std::string(integrator) + "\"",
+                           integrator_choices());
+  if (model.mass.size() == 0) return {infinity, LimitSource::no_limit};  // all pinned
   if (integrator == "explicit-euler")
     return {explicit_euler_critical_step(model), LimitSource::exact_formula};
   if (integrator == "verlet" || integrator == "velocity-verlet")
@@ -197,7 +201,8 @@ double critical_step(const LinearModel& model, std::string_view integrator) {
   return critical_step_of(model, integrator).step;
 }
 
-StabilityReport stability_report(const SceneParameters& p, const Implementation& impl) {
+StabilityReport stability_report(const SceneParameters& p, const Implementation& impl,
+                                 int exact_particles) {
   SceneParameters still = p;
   still.displacement = Vec2::Zero();
   const Scene scene = build_scene(still, impl);
@@ -206,7 +211,7 @@ StabilityReport stability_report(const SceneParameters& p, const Implementation&
   report.particles = particles.size();
   report.frequency_bound =
       highest_frequency_bound(scene.springs, particles.position, particles.mass, particles.pinned);
-  report.exact = report.particles <= exact_particles_max;
+  report.exact = report.particles <= exact_particles;
   if (report.exact) {
     const LinearModel model =
         linearise(scene.springs, particles.position, particles.mass, particles.pinned);

@@ -42,7 +42,7 @@ class ImplicitEuler final : public Integrator {
   void build_pattern(const Model& model);
   void assemble(const Model& model, const Vectors& r, const Vectors& v, double h);
   Eigen::Index slot(int row, int col) const;
-  Eigen::VectorXd solve(const Eigen::VectorXd& b);  // A x = b, |b| = 1
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, double scale);  // A x = b/scale, |b| = scale
 
   ModelFingerprint fingerprint_;
   FreeParticles free_{{}};
@@ -138,9 +138,11 @@ void ImplicitEuler::assemble(const Model& model, const Vectors& r, const Vectors
   }
 }
 
-Eigen::VectorXd ImplicitEuler::solve(const Eigen::VectorXd& b) {
+Eigen::VectorXd ImplicitEuler::solve(const Eigen::VectorXd& rhs, double scale) {
+  // Solved for Δv/scale, so that CG's tolerance is relative to a right-hand side of norm 1.
+  const Eigen::VectorXd b = rhs / scale;
   jacobi_.compute(matrix_);
-  const Eigen::VectorXd x = jacobi_.solveWithGuess(b, guess_ / b.norm());
+  const Eigen::VectorXd x = jacobi_.solveWithGuess(b, guess_ / scale);
   if (jacobi_.info() == Eigen::Success) return x;
   if (!analysed_) direct_.analyzePattern(matrix_), analysed_ = true;
   direct_.factorize(matrix_);
@@ -165,7 +167,7 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
   // decaying motion reaches 1e-155 and would stop it before its first iteration.
   const double scale = rhs.norm();
   const Eigen::VectorXd dv =
-      scale == 0.0 ? Eigen::VectorXd::Zero(rhs.size()).eval() : scale * solve(rhs / scale);
+      scale == 0.0 ? Eigen::VectorXd::Zero(rhs.size()).eval() : scale * solve(rhs, scale);
   guess_ = dv;
   for (int j = 0; j < free_.size(); ++j) {
     const int i = free_.particle[std::size_t(j)];

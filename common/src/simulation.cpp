@@ -122,6 +122,8 @@ void Simulation::set_particle(int i, const Vec2& position, const Vec2& velocity)
   particles.position.col(i) = position;
   particles.velocity.col(i) = particles.pinned[i] ? Vec2::Zero() : velocity;
   integrator_->restart();
+  // A hand that drags a particle far adds energy no step made: not a divergence.
+  reference_energy_ = std::max(reference_energy_, diagnostics().total());
 }
 
 void Simulation::set_pinned(int i, bool pinned) {
@@ -130,6 +132,17 @@ void Simulation::set_pinned(int i, bool pinned) {
   particles.pinned[i] = pinned;  // the model's hold_pinned (5.5) now holds it
   if (pinned) particles.velocity.col(i).setZero();
   integrator_->restart();
+}
+
+void Simulation::continue_from(const Simulation& previous) {
+  if (previous.particles().size() != particles().size())
+    throw InvalidParameter(
+        "continue_from", std::to_string(previous.particles().size()) + " particles",
+        "a run of the same " + std::to_string(particles().size()) + " particles");
+  start_time_ = previous.time();
+  steps_ = 0;
+  start_position_ = previous.start_position_;
+  reference_energy_ = std::max(reference_energy_, previous.reference_energy_);
 }
 
 void Simulation::check_divergence(bool check_energy) const {

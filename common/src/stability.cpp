@@ -53,6 +53,7 @@ LinearModel linearise(const std::vector<Spring>& springs, const Vectors& r,
 }
 
 double highest_frequency(const LinearModel& model) {
+  if (model.mass.size() == 0) return 0.0;  // every particle pinned: nothing moves
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd scaled = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(scaled, Eigen::EigenvaluesOnly);
@@ -71,6 +72,7 @@ Eigen::VectorXcd system_eigenvalues(const LinearModel& model) {
 }
 
 double explicit_euler_growth_factor(const LinearModel& model, double h) {
+  if (model.mass.size() == 0) return 0.0;
   const Eigen::VectorXcd lambda = system_eigenvalues(model);
   const double largest = lambda.cwiseAbs().maxCoeff();
   double growth = 0.0;
@@ -80,6 +82,7 @@ double explicit_euler_growth_factor(const LinearModel& model, double h) {
 }
 
 double explicit_euler_critical_step(const LinearModel& model) {
+  if (model.mass.size() == 0) return std::numeric_limits<double>::infinity();
   const Eigen::VectorXcd lambda = system_eigenvalues(model);
   const double largest = lambda.cwiseAbs().maxCoeff();
   double limit = std::numeric_limits<double>::infinity();

@@ -18,7 +18,7 @@
 namespace springlab::view {
 
 struct AppOptions {
-  std::string scene = "task4";  ///< task1 … or a scene file
+  std::string scene = "task5";  ///< task1 … task5 or a scene file
   unsigned width = 1280, height = 800;
   bool frame_rate_limit = true;   ///< 60 frames/s; off for headless runs and benchmarks
   bool fixed_frame_time = false;  ///< ImGui's clock at exactly 1/60 s a frame (repeatable)

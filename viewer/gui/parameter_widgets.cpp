@@ -47,7 +47,9 @@ Span span_of(const Range& range, double loaded) {
 }  // namespace
 
 template <class T>
-bool ParameterWidgets::widget(const FieldInfo& info, T& value, const T& loaded, int particles) {
+bool ParameterWidgets::widget(const FieldInfo& info, T& value, const T& loaded) {
+  // Text fields (names, particle sets) have no slider: pins are set by clicking particles.
+  if constexpr (std::is_same_v<T, std::string>) return false;
   const std::string key(info.key);
   const std::string label = label_of(info);
   bool changed = false;
@@ -59,7 +61,6 @@ bool ParameterWidgets::widget(const FieldInfo& info, T& value, const T& loaded, 
     int shown = value;
     const int low = int(std::max(info.range.min, -1e9));
     int high = int(std::min(info.range.max, std::max(10.0 * loaded, 100.0)));
-    if (key.find("particle") != std::string::npos) high = std::max(particles - 1, low + 1);
     ImGui::SliderInt(label.c_str(), &shown, low, high);
     if (shown != value) {
       if (info.range.contains(shown)) {
@@ -100,7 +101,6 @@ bool ParameterWidgets::widget(const FieldInfo& info, T& value, const T& loaded, 
 bool ParameterWidgets::draw_field(SceneParameters& p, const SceneParameters& loaded,
                                   std::string_view key) {
   bool changed = false;
-  const int particles = p.rows * p.cols;
   // Walk both structs in step: the loaded value of each field sets its slider's ends.
   std::vector<const void*> loaded_values;
   for_each_field(loaded, [&](const FieldInfo&, const auto& v) { loaded_values.push_back(&v); });
@@ -108,7 +108,7 @@ bool ParameterWidgets::draw_field(SceneParameters& p, const SceneParameters& loa
   for_each_field(p, [&](const FieldInfo& info, auto& value) {
     using T = std::decay_t<decltype(value)>;
     const T& before = *static_cast<const T*>(loaded_values[index++]);
-    if (info.key == key) changed = widget(info, value, before, particles) || changed;
+    if (info.key == key) changed = widget(info, value, before) || changed;
   });
   return changed;
 }

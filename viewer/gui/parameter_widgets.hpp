@@ -32,7 +32,7 @@ class ParameterWidgets {
 
  private:
   template <class T>
-  bool widget(const FieldInfo& info, T& value, const T& loaded, int particles);
+  bool widget(const FieldInfo& info, T& value, const T& loaded);
 
   std::map<std::string, WidgetRect, std::less<>> rects_;
   std::map<std::string, std::string, std::less<>> errors_;  // a typed value out of range

@@ -49,7 +49,7 @@ Problem problem_of(Problem::Kind kind, std::string headline, std::string detail)
 void History::add(double t, const Diagnostics& d) {
   push_capped(time, t);
   push_capped(kinetic, d.kinetic);
-  push_capped(potential, d.potential);
+  push_capped(potential, d.potential + d.gravitational);
   push_capped(total, d.total());
   push_capped(momentum_x, d.momentum.x());
   push_capped(momentum_y, d.momentum.y());
@@ -135,14 +135,16 @@ std::unique_ptr<Simulation> Session::make(const Implementation& impl,
   }
   for (int i = 0; i < particles.size(); ++i)
     if (particles.pinned[std::size_t(i)]) particles.velocity.col(i).setZero();
-  return std::make_unique<Simulation>(std::move(scene), impl);
+  auto sim = std::make_unique<Simulation>(std::move(scene), impl);
+  if (previous) sim->continue_from(*previous);
+  return sim;
 }
 
 void Session::rebuild(bool keep_state) {
   // Carry the motion over only from a healthy run of the same particles.
   const bool keep = keep_state && primary_ && problem_.kind == Problem::Kind::none &&
-                    primary_->particles().size() == parameters_.rows * parameters_.cols;
-  const double elapsed = keep ? time() : 0.0;
+                    primary_->parameters().rows == parameters_.rows &&
+                    primary_->parameters().cols == parameters_.cols;
   const bool had_problem = problem_.kind != Problem::Kind::none;
   std::unique_ptr<Simulation> old_primary = std::move(primary_),
                               old_reference = std::move(reference_);
@@ -162,7 +164,6 @@ void Session::rebuild(bool keep_state) {
     if (compare_ != Compare::off && code_ == Code::student)
       reference_ = make(reference_implementation(),
                         keep ? (old_reference ? old_reference.get() : old_primary.get()) : nullptr);
-    time_offset_ = elapsed;
     if (grabbed_ >= 0) {
       const int held = grabbed_;
       edit_each([&](Simulation& sim) { sim.set_pinned(held, true); });
@@ -218,7 +219,7 @@ void Session::report(const std::exception& error, const std::string& whose) {
 }
 
 double Session::time() const {
-  return time_offset_ + (primary_ ? primary_->time() : 0.0);
+  return primary_ ? primary_->time() : 0.0;
 }
 
 long Session::frame(double seconds) {
@@ -279,7 +280,7 @@ std::optional<double> Session::critical_step() {
       return critical_;
     }
     // Larger scenes: no eigen-solve, an estimate from the bound on ω_max (stability.hpp).
-    const StabilityReport report = stability_report(parameters_, reference_implementation());
+    const StabilityReport report = stability_report(parameters_, reference_implementation(), 0);
     for (const StabilityReport::Limit& limit : report.limits)
       if (limit.integrator == parameters_.integrator &&
           limit.critical.source != LimitSource::not_computed)

@@ -136,7 +136,6 @@ class Session {
   bool running_ = true;
   Pacing pacing_;
   double owed_steps_ = 0.0;  // the fraction of a step carried to the next frame
-  double time_offset_ = 0.0;
   std::unique_ptr<Simulation> primary_, reference_;
   Problem problem_;
   History history_;

@@ -13,8 +13,8 @@
 //                     Order 2. Cost 2 without dampers, a few more with them (an iteration).
 //                     Stable for h < 2/ω_max whatever the damping.
 //   velocity-verlet   kick h/2, drift h, kick h/2 with the dampers implicit (trapezoidal).
-//                     Order 2. Cost 1 (the end-of-step acceleration is reused) plus one sparse
-//                     back-substitution. Stable for h < 2/ω_max whatever the damping.
+//                     Order 2. Cost 1 (the end-of-step acceleration is reused) plus a few
+//                     conjugate-gradient products. Stable for h < 2/ω_max whatever the damping.
 //   rk4               classical Runge–Kutta. Order 4. Cost 4. Stable where |R(hλ)| ≤ 1 for every
 //                     mode, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24; undamped h < 2√2/ω_max.
 //   implicit-euler    backward Euler linearised once per step (Baraff & Witkin 1998), solved by

@@ -51,7 +51,8 @@ class Simulation {
   /// impl.hold_pinned when any particle is pinned. A scene pays only for what it enables.
   const Vectors& acceleration(const Vectors& r, const Vectors& v);
 
-  double time() const { return double(steps_) * scene_.parameters.step; }  ///< s
+  /// s: the time it started from (continue_from) plus the steps taken.
+  double time() const { return start_time_ + double(steps_) * scene_.parameters.step; }
   long steps_taken() const { return steps_; }
   long force_evaluations() const { return evaluations_; }
   const Scene& scene() const { return scene_; }
@@ -71,6 +72,11 @@ class Simulation {
   /// Pins (its acceleration and velocity held at zero) or frees particle i; restarts the
   /// integrator. Throws InvalidParameter for an index outside the particles.
   void set_pinned(int i, bool pinned);
+  /// Goes on from `previous`, a run of as many particles whose state this one started from (the
+  /// viewer rebuilds a run when a parameter changes): its time, the start positions gravity's
+  /// energy is measured from, and its reference energy. So a change mid-run neither replays the
+  /// wind's gusts and the push nor re-bases the divergence watch.
+  void continue_from(const Simulation& previous);
 
  private:
   void check_divergence(bool check_energy) const;
@@ -82,6 +88,7 @@ class Simulation {
   AccelerationFunction acceleration_function_;
   DivergenceLimits limits_;
   double reference_energy_ = 0.0;
+  double start_time_ = 0.0;  // s
   long steps_ = 0;
   long evaluations_ = 0;
   Eigen::VectorXd inverse_mass_;   // 1/m_i

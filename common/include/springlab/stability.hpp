@@ -111,6 +111,9 @@ struct StabilityReport {
   std::vector<Limit> limits;  ///< every integrator, in integrator_names() order
 };
 
-StabilityReport stability_report(const SceneParameters& p, const Implementation& impl);
+/// Eigen-solves (exact limits) for scenes of up to `exact_particles` particles; beyond, estimates
+/// from the bounds, one pass over the springs.
+StabilityReport stability_report(const SceneParameters& p, const Implementation& impl,
+                                 int exact_particles = exact_particles_max);
 
 }  // namespace springlab

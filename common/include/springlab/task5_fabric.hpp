@@ -14,7 +14,7 @@ SPRINGLAB_TASK_API_BEGIN
 
 /// The bend springs of a rows×cols grid, equation (5.1): each particle [i, j] is joined to the
 /// particle two places to its right, [i, j+2], and two places below it, [i+2, j]:
-/// rows·(cols-2) + cols·(rows-2) springs (a side shorter than 3 has none). Indices as in (2.1).
+/// rows·max(cols-2, 0) + cols·max(rows-2, 0) springs. Indices as in (2.1).
 /// Every spring gets the family SpringFamily::bend and the bend family's k, b and ℓ0 (the kit's
 /// values: k = 10 N/m, b = 0.05 N·s/m, ℓ0 = 2 m).
 /// @param rows, cols  grid size (rows ≥ 1, cols ≥ 1)
