@@ -108,6 +108,18 @@ void validate(const SceneParameters& p) {
     throw InvalidParameter("integrator", "\"" + p.integrator + "\"", integrator_choices());
 }
 
+void set_number(SceneParameters& p, std::string_view key, double value) {
+  set_parameter(p, key, number(value));  // to_chars: the shortest text that reads back exactly
+}
+
+void set_assignment(SceneParameters& p, std::string_view assignment) {
+  const auto equals = assignment.find('=');
+  if (equals == std::string_view::npos)
+    throw InvalidParameter("--set", "\"" + std::string(assignment) + "\"",
+                           "KEY=VALUE, e.g. structural.k=40");
+  set_parameter(p, assignment.substr(0, equals), assignment.substr(equals + 1));
+}
+
 std::string nearest_key(std::string_view key) {
   std::string best;
   int best_distance = 1 << 30;

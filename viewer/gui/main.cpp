@@ -36,11 +36,6 @@ struct Options {
   bool paused = false;
 };
 
-std::string exact_text(double x) {
-  char text[32];
-  return std::string(text, std::to_chars(text, text + sizeof text, x).ptr);
-}
-
 void parse_size(const std::string& text, AppOptions& app) {
   const auto x = text.find('x');
   unsigned width = 0, height = 0;
@@ -59,13 +54,9 @@ void parse_size(const std::string& text, AppOptions& app) {
 SceneParameters scene_from(const Options& options) {
   SceneParameters p = load_scene(options.app.scene);
   if (options.integrator) set_parameter(p, "integrator", *options.integrator);
-  if (options.dt) set_parameter(p, "step", exact_text(*options.dt));
-  for (const std::string& assignment : options.sets) {
-    const auto equals = assignment.find('=');
-    if (equals == std::string::npos)
-      throw InvalidParameter("--set", "\"" + assignment + "\"", "KEY=VALUE, e.g. structural.k=40");
-    set_parameter(p, assignment.substr(0, equals), assignment.substr(equals + 1));
-  }
+  if (options.dt) set_number(p, "step", *options.dt);
+  for (const std::string& assignment : options.sets)
+    set_assignment(p, assignment);
   validate(p);
   return p;
 }

@@ -11,7 +11,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <fstream>
@@ -38,23 +37,13 @@ struct Options {
   bool stability = false;
 };
 
-// A number as text that reads back exactly (std::to_string would keep only six decimals).
-std::string exact_text(double x) {
-  char text[32];
-  return std::string(text, std::to_chars(text, text + sizeof text, x).ptr);
-}
-
 SceneParameters scene_from(const Options& options) {
   SceneParameters p = load_scene(options.scene);
   if (options.integrator) set_parameter(p, "integrator", *options.integrator);
-  if (options.dt) set_parameter(p, "step", exact_text(*options.dt));
-  if (options.duration) set_parameter(p, "duration", exact_text(*options.duration));
-  for (const std::string& assignment : options.sets) {
-    const auto equals = assignment.find('=');
-    if (equals == std::string::npos)
-      throw InvalidParameter("--set", "\"" + assignment + "\"", "KEY=VALUE, e.g. structural.k=40");
-    set_parameter(p, assignment.substr(0, equals), assignment.substr(equals + 1));
-  }
+  if (options.dt) set_number(p, "step", *options.dt);
+  if (options.duration) set_number(p, "duration", *options.duration);
+  for (const std::string& assignment : options.sets)
+    set_assignment(p, assignment);
   validate(p);
   return p;
 }

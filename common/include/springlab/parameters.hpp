@@ -168,6 +168,13 @@ void validate(const SceneParameters& p);
 /// the field's type, or a value out of range.
 void set_parameter(SceneParameters& p, std::string_view key, std::string_view value);
 
+/// set_parameter with a number, passed on exactly (as the front ends' --dt and --duration do).
+void set_number(SceneParameters& p, std::string_view key, double value);
+
+/// "KEY=VALUE", as the front ends' --set takes it: set_parameter(p, KEY, VALUE). Throws
+/// InvalidParameter naming --set for text without '='.
+void set_assignment(SceneParameters& p, std::string_view assignment);
+
 /// The known field name nearest to `key` (edit distance), for "did you mean" hints.
 std::string nearest_key(std::string_view key);
 
