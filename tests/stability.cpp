@@ -61,12 +61,7 @@ const CriticalMode& critical_mode(const std::string& name, double h) {
   if (found != modes.end()) return found->second;
   const LinearModel& model = model_of(name);
   const Eigen::Index n = model.mass.size();
-  const Eigen::VectorXd inverse_mass = model.mass.cwiseInverse();
-  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
-  a.topRightCorner(n, n).setIdentity();
-  a.bottomLeftCorner(n, n) = -(inverse_mass.asDiagonal() * model.stiffness);
-  a.bottomRightCorner(n, n) = -(inverse_mass.asDiagonal() * model.damping);
-  const Eigen::EigenSolver<Eigen::MatrixXd> solver(a);
+  const Eigen::EigenSolver<Eigen::MatrixXd> solver(system_matrix(model));
   const Eigen::VectorXcd& lambda = solver.eigenvalues();
   const double largest = lambda.cwiseAbs().maxCoeff();
   Eigen::Index worst = 0;

@@ -60,14 +60,18 @@ double highest_frequency(const LinearModel& model) {
   return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
 }
 
-Eigen::VectorXcd system_eigenvalues(const LinearModel& model) {
+Eigen::MatrixXd system_matrix(const LinearModel& model) {
   const Eigen::Index n = model.mass.size();
   const Eigen::VectorXd inverse_mass = model.mass.cwiseInverse();
   Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   a.topRightCorner(n, n).setIdentity();
   a.bottomLeftCorner(n, n) = -(inverse_mass.asDiagonal() * model.stiffness);
   a.bottomRightCorner(n, n) = -(inverse_mass.asDiagonal() * model.damping);
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(a, false);
+  return a;
+}
+
+Eigen::VectorXcd system_eigenvalues(const LinearModel& model) {
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(system_matrix(model), false);
   return solver.eigenvalues();
 }
 

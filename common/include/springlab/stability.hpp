@@ -28,7 +28,10 @@ LinearModel linearise(const std::vector<Spring>& springs, const Vectors& r,
 /// ω_max, the highest angular frequency of the undamped model (K φ = ω² M φ), rad/s.
 double highest_frequency(const LinearModel& model);
 
-/// The eigenvalues λ of y' = A y with y = (δr, δv), A = [[0, I], [-M⁻¹K, -M⁻¹C]], 1/s.
+/// A of the first-order system y' = A y with y = (δr, δv): A = [[0, I], [-M⁻¹K, -M⁻¹C]], 1/s.
+Eigen::MatrixXd system_matrix(const LinearModel& model);
+
+/// The eigenvalues λ of system_matrix(model), 1/s.
 Eigen::VectorXcd system_eigenvalues(const LinearModel& model);
 
 /// Explicit Euler multiplies mode λ by 1 + hλ each step: the largest |1 + hλ| at step h over
