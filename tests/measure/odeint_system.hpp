@@ -59,8 +59,9 @@ class OdeintSystem {
 };
 
 /// Odeint's classical Runge–Kutta and Dormand–Prince 5(4) steppers over Eigen vectors.
-using OdeintRk4 = boost::numeric::odeint::runge_kutta4<OdeintState, double, OdeintState, double,
-                                                       boost::numeric::odeint::vector_space_algebra>;
+using OdeintRk4 =
+    boost::numeric::odeint::runge_kutta4<OdeintState, double, OdeintState, double,
+                                         boost::numeric::odeint::vector_space_algebra>;
 using OdeintDopri5 =
     boost::numeric::odeint::runge_kutta_dopri5<OdeintState, double, OdeintState, double,
                                                boost::numeric::odeint::vector_space_algebra>;
