@@ -219,6 +219,37 @@ TEST_CASE("Stability: explicit Euler's critical mode decays at 0.9 h_c and grows
     CHECK(late > 2.0 * early);
 }
 
+TEST_CASE("Stability: the wind's drag damps like a damper to still air",
+          "[stability][runs][wind]") {
+  // In still air (wind speed 0) the wind is the drag -c v alone. On the stretch u of two masses
+  // it adds c/m to the damping rate, u'' = -(2k/m) u - ((2b + c)/m) u', so explicit Euler's limit
+  // 2 zeta/omega = c_total/omega^2 becomes (2b + c)/(2k), half as large again at the lab values.
+  SceneParameters p =
+      two_masses(lab.structural.k, lab.structural.b, lab.mass, 1e-4, 0.01, "explicit-euler");
+  p.wind.enabled = true;
+  p.wind.speed = 0.0;
+  const double c = p.wind.drag, k = p.structural.k, b = p.structural.b;
+  const double limit = critical_step(linearise_at_rest(p, implementation()), "explicit-euler");
+  CHECK_THAT(limit, WithinRel((2 * b + c) / (2 * k), 1e-9));
+  REQUIRE(limit > 1.2 * b / k);  // beyond the limit without the drag: the runs below tell
+  const double factor = GENERATE(0.9, 1.1);
+  p.step = factor * limit;
+  // |1 + h lambda|^2 = 1 - c_total h + omega^2 h^2 per step; run to a theoretical factor of 4.
+  const double rate = (2 * b + c) / p.mass, omega2 = 2 * k / p.mass, h = 1.1 * limit;
+  const long steps = std::lround(std::log(4.0) / (0.5 * std::log(1 - rate * h + omega2 * h * h)));
+  const std::vector<double> history =
+      strain_history(build_scene(p, implementation()), implementation(), steps, 0.0, 1e-3);
+  REQUIRE(history.size() == std::size_t(steps));
+  const auto tenth = std::ptrdiff_t(steps / 10);
+  const double early = *std::max_element(history.begin(), history.begin() + tenth);
+  const double late = *std::max_element(history.end() - tenth, history.end());
+  CAPTURE(limit, factor, steps, early, late);
+  if (factor < 1.0)
+    CHECK(late < 0.6 * early);
+  else
+    CHECK(late > 2.0 * early);
+}
+
 TEST_CASE("Stability: implicit Euler stays bounded at h = 1 s on every scene",
           "[stability][runs]") {
   const std::string scene = GENERATE("two masses", "3x3 grid", "10x10 fabric");

@@ -16,9 +16,6 @@ namespace {
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
-// System eigenvalues this much smaller than the largest belong to rigid motions.
-constexpr double rigid_tolerance = 1e-6;
-
 // K and C scaled by M^(-1/2) on both sides (unit masses), restricted to the complement of the
 // null space of K + C: the translations, which neither springs nor dampers resist. That
 // complement is invariant under both (they are symmetric), so the deformation modes keep their
@@ -203,9 +200,7 @@ double critical_step(const LinearModel& model, std::string_view integrator) {
 
 StabilityReport stability_report(const SceneParameters& p, const Implementation& impl,
                                  int exact_particles) {
-  SceneParameters still = p;
-  still.displacement = Vec2::Zero();
-  const Scene scene = build_scene(still, impl);
+  const Scene scene = scene_at_rest(p, impl);
   const Particles& particles = scene.particles;
   StabilityReport report;
   report.particles = particles.size();
@@ -213,8 +208,7 @@ StabilityReport stability_report(const SceneParameters& p, const Implementation&
       highest_frequency_bound(scene.springs, particles.position, particles.mass, particles.pinned);
   report.exact = report.particles <= exact_particles;
   if (report.exact) {
-    const LinearModel model =
-        linearise(scene.springs, particles.position, particles.mass, particles.pinned);
+    const LinearModel model = linearise(scene);
     report.frequency = highest_frequency(model);
     for (const std::string& name : integrator_names())
       report.limits.push_back({name, critical_step_of(model, name)});
@@ -223,7 +217,8 @@ StabilityReport stability_report(const SceneParameters& p, const Implementation&
   // Too large for eigen-solves: lower estimates from the bounds. ω ≤ ω_bound and c ≤ c_bound
   // for every mode, and each per-mode limit falls as ω and c grow.
   const double w = report.frequency_bound;
-  const double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
+  double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
+  if (p.wind.enabled) c += p.wind.drag / particles.mass.minCoeff();  // the drag to the air
   const auto estimate = [](double h) { return CriticalStep{h, LimitSource::modal_estimate}; };
   for (const std::string& name : integrator_names()) {
     CriticalStep limit;  // explicit-euler: its limit hangs on each mode's damping ratio

@@ -22,10 +22,6 @@ void add_pair_block(Eigen::MatrixXd& matrix, int p, int q, const Eigen::Matrix2d
   matrix.block<2, 2>(2 * q, 2 * p) -= block;
 }
 
-// Eigenvalues this much smaller than the largest belong to rigid motions (free translation).
-// A free translation is a double zero eigenvalue; rounding splits it by about √ε·|λ_max|.
-constexpr double rigid_tolerance = 1e-6;
-
 }  // namespace
 
 LinearModel linearise(const std::vector<Spring>& springs, const Vectors& r,
@@ -132,12 +128,23 @@ double damping_rate_bound(const std::vector<Spring>& springs, const Eigen::Vecto
   return largest;
 }
 
-LinearModel linearise_at_rest(const SceneParameters& p, const Implementation& impl) {
+Scene scene_at_rest(const SceneParameters& p, const Implementation& impl) {
   SceneParameters still = p;
   still.displacement = Vec2::Zero();
-  const Scene scene = build_scene(still, impl);
-  return linearise(scene.springs, scene.particles.position, scene.particles.mass,
-                   scene.particles.pinned);
+  return build_scene(still, impl);
+}
+
+LinearModel linearise(const Scene& scene) {
+  const Particles& particles = scene.particles;
+  LinearModel model =
+      linearise(scene.springs, particles.position, particles.mass, particles.pinned);
+  const WindParameters& wind = scene.parameters.wind;
+  if (wind.enabled) model.damping.diagonal().array() += wind.drag;
+  return model;
+}
+
+LinearModel linearise_at_rest(const SceneParameters& p, const Implementation& impl) {
+  return linearise(scene_at_rest(p, impl));
 }
 
 }  // namespace springlab

@@ -6,6 +6,7 @@
 
 #include "springlab/implementation.hpp"
 #include "springlab/parameters.hpp"
+#include "springlab/scene.hpp"
 #include "springlab/types.hpp"
 
 #include <Eigen/Core>
@@ -14,6 +15,10 @@
 #include <vector>
 
 namespace springlab {
+
+/// System eigenvalues this much smaller than the largest belong to rigid motions: a free
+/// translation is a double zero eigenvalue, which rounding splits by about √ε·|λ_max|.
+inline constexpr double rigid_tolerance = 1e-6;
 
 /// M δr'' = -K δr - C δv about a configuration r, for the free (unpinned) degrees of freedom.
 struct LinearModel {
@@ -97,6 +102,14 @@ CriticalStep critical_step_of(const LinearModel& model, std::string_view integra
 
 /// critical_step_of(model, integrator).step.
 double critical_step(const LinearModel& model, std::string_view integrator);
+
+/// The model of a scene about its current configuration: its springs and dampers, and the
+/// wind's drag when it blows. The drag c(w − v) is a damper to the air, c on every free degree
+/// of freedom; the gusts w(t) drive the motion but do not change its stability.
+LinearModel linearise(const Scene& scene);
+
+/// Scene p at rest (no particle displaced), its springs built by impl.
+Scene scene_at_rest(const SceneParameters& p, const Implementation& impl);
 
 /// The model of scene p at rest (no displacement), its springs built by impl.
 LinearModel linearise_at_rest(const SceneParameters& p, const Implementation& impl);
