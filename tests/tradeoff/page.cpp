@@ -146,8 +146,8 @@ void advice(std::ostream& out, const Results& r) {
       out << "- Implicit Euler never became unstable on " << s.name
           << ", up to h = " << number(largest->h) << " s, where its largest error was "
           << number(largest->max_error)
-          << " m: it stays bounded by damping the motion away (see the energy figures), which "
-             "suits stiff scenes where only stability matters, not accuracy.\n";
+          << " m: bounded is not the same as accurate (the energy figures show what it does to "
+             "the energy). It suits stiff scenes where only stability matters.\n";
   }
 }
 
