@@ -1,0 +1,133 @@
+// springlab-tradeoff: the speed–accuracy study of issue 5. Writes CSV files, SVG figures and the
+// handout page; with --quick, a shorter study that checks its results against theory (CI).
+// Exit codes: 0 done, 1 a --quick check failed, 2 bad input.
+#include "measure.hpp"
+#include "springlab/errors.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <iostream>
+
+using namespace springlab;
+using namespace springlab::tradeoff;
+
+namespace {
+
+StudyOptions quick_options() {
+  StudyOptions o;
+  o.quick = true;
+  o.repeats = 1;
+  o.duration = 1.28;  // s: 128 lab steps, still a whole number of every step up to 0.32 s
+  o.tolerances = {1e-4, 1e-6, 1e-8};
+  o.k_min_fabric = -3;
+  return o;
+}
+
+// "--repeats = 0: allowed 1 <= repeats <= 20", the kit's style of range messages.
+CLI::Validator range(const std::string& option, int lo, int hi) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        try {
+          std::size_t used = 0;
+          const int value = std::stoi(text, &used);
+          if (used == text.size() && value >= lo && value <= hi) return "";
+        } catch (const std::exception&) {
+        }
+        return option + " = " + text + ": allowed " + std::to_string(lo) +
+               " <= " + option.substr(2) + " <= " + std::to_string(hi);
+      },
+      "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "springlab-tradeoff: error, energy, force evaluations and wall time of every "
+      "integrator (and Boost.Odeint's rk4 and dopri5) on the lab's scenes"};
+  bool quick = false, no_figures = false;
+  int repeats = 0;
+  std::string out = "build/release/tradeoff", figures, page;
+  std::vector<std::string> scenes;
+  app.add_flag(
+      "--quick", quick,
+      "short study (1.28 s, fewer steps and tolerances, one timing) that checks measured orders, "
+      "critical steps and force-evaluation budgets against theory; exit 1 on a failure");
+  app.add_option("--out", out, "directory for the CSV files and gnuplot scripts")
+      ->capture_default_str();
+  app.add_option("--figures", figures, "directory for the SVG figures (default OUT/figures)");
+  app.add_option("--page", page, "the Markdown summary page to write (default OUT/tradeoff.md)");
+  app.add_option("--repeats", repeats,
+                 "timed repeats per run, the minimum is kept (default 3, "
+                 "--quick 1)")
+      ->check(range("--repeats", 1, 20));
+  app.add_option("--scenes", scenes, "a subset of two-masses, grid, fabric")
+      ->check(CLI::IsMember({"two-masses", "grid", "fabric"}));
+  app.add_flag("--no-figures", no_figures, "skip gnuplot");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  if (figures.empty()) figures = (std::filesystem::path(out) / "figures").string();
+  if (page.empty()) page = (std::filesystem::path(out) / "tradeoff.md").string();
+
+  Results results;
+  results.options = quick ? quick_options() : StudyOptions{};
+  StudyOptions& options = results.options;
+  if (repeats > 0) options.repeats = repeats;
+  if (!scenes.empty()) options.scenes = scenes;
+  const double started = now();
+  try {
+    for (const std::string& name : options.scenes) {
+      results.scenarios.push_back(make_scenario(name, options));
+      results.evaluation_seconds.push_back(evaluation_time(results.scenarios.back()));
+    }
+    double work = 0.0;
+    for (const Scenario& s : results.scenarios) {
+      work += critical_work(s, options);
+      std::vector<std::string> methods = kit_methods();
+      methods.push_back(odeint_rk4);
+      for (const std::string& method : methods)
+        for (int k = k_min(s, options); k <= options.k_max; ++k)
+          work += (1.0 + options.repeats) *
+                  run_work(s, method, std::ldexp(s.params.step, k), options.duration);
+      work += (1.0 + options.repeats) * double(options.tolerances.size()) *
+              run_work(s, odeint_dopri5, 0.01, options.duration);
+    }
+    Progress progress(work);
+    for (const Scenario& s : results.scenarios) {
+      std::vector<Run> runs = run_scene(s, options, progress);
+      std::vector<StepLimit> limits = critical_steps(s, options, progress);
+      std::vector<Order> orders = measured_orders(s, runs);
+      results.runs.insert(results.runs.end(), runs.begin(), runs.end());
+      results.critical.insert(results.critical.end(), limits.begin(), limits.end());
+      results.orders.insert(results.orders.end(), orders.begin(), orders.end());
+    }
+  } catch (const InvalidParameter& e) {
+    std::cerr << "springlab-tradeoff: " << e.what() << '\n';
+    return 2;
+  }
+  results.total_seconds = now() - started;
+  write_csv(results, out);
+  std::cerr << "tradeoff: CSV files in " << out << '\n';
+  if (!no_figures) {
+    if (write_figures(results, out, figures))
+      std::cerr << "tradeoff: figures in " << figures << '\n';
+    else
+      std::cerr << "tradeoff: gnuplot failed or is missing: no figures (./lab setup installs "
+                   "gnuplot-nox)\n";
+  }
+  write_page(results, page, figures);
+  std::cerr << "tradeoff: page " << page << "; the study took " << seconds(results.total_seconds)
+            << '\n';
+  if (!options.quick) return 0;
+  const std::vector<std::string> failures = check(results);
+  for (const std::string& failure : failures)
+    std::cerr << "tradeoff check FAILED: " << failure << '\n';
+  if (!failures.empty()) return 1;
+  std::cerr << "tradeoff: every check passed (orders within +-0.15 of theory, critical steps "
+               "within 2 %, force evaluations within budget)\n";
+  return 0;
+}

@@ -1,0 +1,152 @@
+// The speed–accuracy study (issue 5): every method on the lab's scenes, against an exact or a
+// checked reference solution, measured in error, energy error, force evaluations and wall time.
+// Written for students to read as a worked example of how methods are compared fairly: the same
+// force code, the same output times, the same error measure for every method.
+#pragma once
+
+#include "springlab/parameters.hpp"
+#include "springlab/types.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace springlab::tradeoff {
+
+/// What a study runs; --quick shrinks every part of it.
+struct StudyOptions {
+  bool quick = false;
+  int repeats = 3;         ///< wall time is the minimum over this many runs
+  double duration = 5.12;  ///< s, 512 lab steps: a whole number of every step in the sweep
+  double sample = 0.04;    ///< s, the output times errors are measured at (a multiple of h ≤ it)
+  int k_min = -6, k_max = 5;  ///< steps h = h_lab·2^k
+  int k_min_fabric = -6;      ///< the fabric's smallest k: its runs at tiny steps cost the most
+  std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
+  std::vector<std::string> scenes{"two-masses", "grid", "fabric"};
+};
+
+/// The reference motion at the output times t_j = j·sample (state and total energy).
+struct Trajectory {
+  std::vector<double> time;       ///< s
+  std::vector<Vectors> position;  ///< m
+  std::vector<double> energy;     ///< J, kinetic + spring + gravity (zero at the start positions)
+};
+
+/// A scene of the study and how its error is measured.
+struct Scenario {
+  std::string name;            ///< "two-masses", "grid", "fabric"
+  std::string title;           ///< for figures and the page
+  SceneParameters params;      ///< the lab's scene, step and integrator set per run
+  Trajectory reference;        ///< exact (two masses) or computed (reference.cpp)
+  std::string reference_note;  ///< how the reference was made and how accurate it is, for the page
+  double reference_error = 0.0;  ///< its estimated largest position error, m
+  double energy_scale = 0.0;     ///< J: the largest |E_ref(t)|, what energy errors are divided by
+};
+
+Scenario make_scenario(const std::string& name, const StudyOptions& options);
+
+/// One run of one method at one step (or tolerance) on one scene.
+struct Run {
+  std::string scene, method;
+  double h = 0.0;          ///< s; for dopri5 the mean step taken
+  double tolerance = 0.0;  ///< dopri5's abs = rel tolerance, 0 for fixed steps
+  bool stable = true;
+  std::string unstable_why;   ///< empty when stable
+  double max_error = 0.0;     ///< m, the largest position error over the output times
+  double end_error = 0.0;     ///< m, at the last output time
+  double energy_error = 0.0;  ///< the largest |E - E_ref| / energy_scale over the output times
+  long evaluations = 0;       ///< force evaluations a(r, v)
+  long steps = 0;
+  double wall = 0.0;           ///< s, minimum over the repeats
+  std::vector<double> energy;  ///< J at the output times (kept for the lab step only)
+};
+
+/// The kit's six integrators, then Odeint's fixed-step RK4 and adaptive Dormand–Prince.
+std::vector<std::string> kit_methods();
+inline const std::string odeint_rk4 = "odeint-rk4";
+inline const std::string odeint_dopri5 = "odeint-dopri5";
+
+/// Reports what is running, how far along the study is and the time left, on stderr.
+class Progress {
+ public:
+  explicit Progress(double total_work) : total_(total_work) {}
+  void begin(const std::string& what);
+  void done(double work);
+
+ private:
+  double total_, done_ = 0.0;
+  double start_ = -1.0, last_print_ = -10.0;
+  std::string what_;
+};
+
+/// Estimated work of a run (force evaluations × particles), for the progress's time estimate.
+double run_work(const Scenario& s, const std::string& method, double h, double duration);
+
+/// Runs one method at step h (or tolerance `tolerance` for dopri5) `repeats` times.
+Run run_method(const Scenario& s, const std::string& method, double h, double tolerance,
+               const StudyOptions& options);
+
+/// The smallest k of the steps h_lab·2^k run on scene s.
+int k_min(const Scenario& s, const StudyOptions& options);
+
+/// Every run of the study on one scene: each method over the steps, dopri5 over the tolerances.
+std::vector<Run> run_scene(const Scenario& s, const StudyOptions& options, Progress& progress);
+
+/// The critical step of a method on a scene: from theory (stability.hpp) and by bisection.
+struct StepLimit {
+  std::string scene, method;
+  double theory = 0.0;    ///< s
+  std::string source;     ///< how theory got it (exact formula, bisection, estimate)
+  double measured = 0.0;  ///< s, 0 when not measured
+  std::string how;        ///< how it was measured
+};
+
+std::vector<StepLimit> critical_steps(const Scenario& s, const StudyOptions& options,
+                                      Progress& progress);
+double critical_work(const Scenario& s, const StudyOptions& options);
+
+/// A least-squares slope of log(error) against log(h).
+struct Order {
+  std::string scene, method;
+  int theory = 0;
+  double measured = 0.0;            ///< NaN when too few points lie in the asymptotic range
+  double h_from = 0.0, h_to = 0.0;  ///< s, the fitted range
+  int points = 0;
+};
+
+std::vector<Order> measured_orders(const Scenario& s, const std::vector<Run>& runs);
+int theoretical_order(const std::string& method);
+
+/// The cheapest stable run reaching error ≤ level, by wall time or by force evaluations.
+const Run* cheapest(const std::vector<Run>& runs, const std::string& scene, double level,
+                    bool by_evaluations);
+
+/// Force evaluations per step a method may use (integrator.hpp), on scene s at step h.
+double evaluation_budget(const Scenario& s, const std::string& method, double h);
+
+/// Wall time of one force evaluation on the scene, s (minimum over a few batches).
+double evaluation_time(const Scenario& s);
+
+struct Results {
+  StudyOptions options;
+  std::vector<Scenario> scenarios;
+  std::vector<Run> runs;
+  std::vector<StepLimit> critical;
+  std::vector<Order> orders;
+  std::vector<double> evaluation_seconds;  ///< per scenario
+  double total_seconds = 0.0;
+};
+
+/// The --quick checks; each failure as one line (expected, measured, what it means).
+std::vector<std::string> check(const Results& r);
+
+void write_csv(const Results& r, const std::string& dir);
+/// gnuplot data and scripts in `dir`, figures (SVG) into `figures`; false when gnuplot failed.
+bool write_figures(const Results& r, const std::string& dir, const std::string& figures);
+void write_page(const Results& r, const std::string& page, const std::string& figures);
+
+/// "1.2e-05", "0.01", "3.4 ms": short numbers for tables and messages.
+std::string number(double x, int digits = 3);
+std::string seconds(double s);
+
+}  // namespace springlab::tradeoff
