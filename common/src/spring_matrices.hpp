@@ -15,7 +15,17 @@ namespace springlab::detail {
 /// (1 − ℓ0/L), negative for a compressed spring, is raised to 0: B stays positive semi-definite,
 /// which keeps the implicit system positive definite. L = 0 gives B = 0: the kit's spring force is
 /// zero there (no direction to push along), and so is its derivative.
-Eigen::Matrix2d stiffness_block(const Vec2& d, double k, double rest_length, bool clamp_compressed);
+/// Inline: the implicit step computes one for every spring at every step.
+inline Eigen::Matrix2d stiffness_block(const Vec2& d, double k, double rest_length,
+                                       bool clamp_compressed) {
+  const double length = d.norm();
+  if (length == 0.0) return Eigen::Matrix2d::Zero();
+  const Vec2 u = d / length;
+  const Eigen::Matrix2d along = u * u.transpose();
+  double across = 1.0 - rest_length / length;
+  if (clamp_compressed && across < 0.0) across = 0.0;
+  return k * (along + across * (Eigen::Matrix2d::Identity() - along));
+}
 
 /// The free (unpinned) particles numbered 0 … size()-1 in their original order.
 struct FreeParticles {

@@ -6,14 +6,17 @@
 //   force/model+wind/N     the same with the lab's gusty wind (the task 5 scene as shipped)
 //   step/METHOD/N          one step of each of the six integrators on the model without wind:
 //                          steps_per_s, evaluations_per_step, and cost_in_evaluations, the step's
-//                          time over the time of one force evaluation measured in the same run
+//                          time over the time of one force evaluation, measured in alternation
 //   rk4-vs-odeint/N        the kit's rk4 and Boost.Odeint's runge_kutta4 stepping the same model
-//                          in turns: kit_over_odeint < 1 means the kit's step is faster
+//                          in alternation: kit_over_odeint < 1 means the kit's step is faster
 //
-// Times are the CPU time of this thread. Every fabric starts as the lab's scene does, flat and at
-// rest under its pinned top row, then falls for 0.3 s (30 symplectic Euler steps) so that its
-// springs are stretched and moving; each step benchmark restarts from that state every 1000 steps
-// (explicit Euler, unstable at the lab's h on a fabric, every 100) so no run drifts into overflow.
+// Times are the CPU time of this thread. The counters are the figures: in the step/ and
+// rk4-vs-odeint/ rows the Time column is that of one iteration, a batch of steps and as many
+// evaluations or Odeint steps (one of each from 150×150 up). Every fabric starts as the lab's
+// scene does, flat and at rest under its pinned top row, then falls for 0.3 s (30 symplectic
+// Euler steps) so that its springs are stretched and moving; each step benchmark goes back to
+// that state every 1000 steps (explicit Euler, unstable at the lab's h on a fabric, every 100)
+// so no run drifts into overflow.
 #include "odeint_system.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/simulation.hpp"
@@ -22,7 +25,6 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
-#include <array>
 #include <ctime>
 #include <memory>
 #include <string>
@@ -62,31 +64,6 @@ class Fabric {
     return Model{acceleration_, scene().springs, scene().particles.mass, scene().particles.pinned};
   }
 
-  // s of CPU time for one Simulation::acceleration at the start state, measured once per
-  // fabric: the median of 5 means, each over at least 0.02 s and 2 calls (a shared machine's
-  // other work makes single windows unreliable).
-  double evaluation_seconds() {
-    if (evaluation_seconds_ > 0.0) return evaluation_seconds_;
-    const Vectors& r = scene().particles.position;
-    const Vectors& v = scene().particles.velocity;
-    simulation_->acceleration(r, v);  // warm the caches
-    std::array<double, 5> means{};
-    for (double& mean : means) {
-      int calls = 0;
-      const double start = thread_seconds();
-      double elapsed = 0.0;
-      while (calls < 2 || elapsed < 0.02) {
-        benchmark::DoNotOptimize(simulation_->acceleration(r, v).data());
-        ++calls;
-        elapsed = thread_seconds() - start;
-      }
-      mean = elapsed / calls;
-    }
-    std::sort(means.begin(), means.end());
-    evaluation_seconds_ = means[2];
-    return evaluation_seconds_;
-  }
-
  private:
   Fabric(int n, bool wind) : n_(n), wind_(wind) {
     SceneParameters p = task_scene(5);
@@ -106,7 +83,6 @@ class Fabric {
   bool wind_;
   std::unique_ptr<Simulation> simulation_;
   AccelerationFunction acceleration_;
-  double evaluation_seconds_ = 0.0;
 };
 
 void force_springs(benchmark::State& state, int n) {
@@ -140,35 +116,55 @@ void force_model(benchmark::State& state, int n, bool wind) {
   state.counters["ns_per_particle"] = ns / double(particles.size());
 }
 
+// Steps per batch: about 20000 particle-steps, so that reading the clock (a system call of
+// about a microsecond) costs nothing measurable even on the 10×10 fabric.
+long batch_size(int n) {
+  return std::max(1L, 20000L / (long(n) * n));
+}
+
+// Each iteration is a batch of steps, then as many force evaluations at the state reached, each
+// batch timed: the cost in evaluations is a ratio of times measured side by side, which the
+// other work of a shared machine disturbs far less than two separate benchmarks.
 void step(benchmark::State& state, int n, const std::string& method) {
   Fabric& fabric = Fabric::get(n, false);
-  const double evaluation = fabric.evaluation_seconds();
+  Simulation& simulation = fabric.simulation();
   const Model model = fabric.model();
   const Particles& start = fabric.scene().particles;
   const double h = fabric.scene().parameters.step;
   const std::unique_ptr<Integrator> integrator = make_integrator(method, implementation());
   Vectors r = start.position, v = start.velocity;
   integrator->step(model, h, r, v);  // builds what the method keeps (patterns, matrices)
+  simulation.acceleration(r, v);
   const long restart_every = method == "explicit-euler" ? 100 : 1000;
-  const long evaluations = fabric.simulation().force_evaluations();
-  long steps = 0;
-  const double begin = thread_seconds();
+  const long batch = batch_size(n);
+  long steps = 0, step_evaluations = 0;
+  double step_seconds = 0.0, evaluation_seconds = 0.0;
   for (auto _ : state) {
-    integrator->step(model, h, r, v);
-    if (++steps % restart_every == 0) {
+    const long before = simulation.force_evaluations();
+    const double t0 = thread_seconds();
+    for (long i = 0; i < batch; ++i)
+      integrator->step(model, h, r, v);
+    const double t1 = thread_seconds();
+    step_evaluations += simulation.force_evaluations() - before;
+    for (long i = 0; i < batch; ++i)
+      benchmark::DoNotOptimize(simulation.acceleration(r, v).data());
+    const double t2 = thread_seconds();
+    step_seconds += t1 - t0;
+    evaluation_seconds += t2 - t1;
+    steps += batch;
+    if (steps % restart_every < batch) {  // back to the start state now and then
       r = start.position;
       v = start.velocity;
       integrator->restart();
     }
   }
-  const double seconds = thread_seconds() - begin;
-  state.counters["steps_per_s"] = benchmark::Counter(double(steps), benchmark::Counter::kIsRate);
-  state.counters["evaluations_per_step"] =
-      double(fabric.simulation().force_evaluations() - evaluations) / double(steps);
-  state.counters["cost_in_evaluations"] = seconds / double(steps) / evaluation;
-  state.counters["evaluation_us"] = 1e6 * evaluation;
+  state.counters["steps_per_s"] = double(steps) / step_seconds;
+  state.counters["evaluations_per_step"] = double(step_evaluations) / double(steps);
+  state.counters["cost_in_evaluations"] = step_seconds / evaluation_seconds;
+  state.counters["evaluation_us"] = 1e6 * evaluation_seconds / double(steps);
 }
 
+// Each iteration is a batch of kit steps, then as many Odeint steps, each batch timed.
 void rk4_vs_odeint(benchmark::State& state, int n) {
   Fabric& fabric = Fabric::get(n, false);
   const Model model = fabric.model();
@@ -182,17 +178,21 @@ void rk4_vs_odeint(benchmark::State& state, int n) {
   OdeintState y = y0;
   kit->step(model, h, r, v);  // both allocate their stage storage once
   odeint.do_step(std::ref(system), y, 0.0, h);
+  const long batch = batch_size(n);
   double kit_seconds = 0.0, odeint_seconds = 0.0;
   long steps = 0;
   for (auto _ : state) {
     const double t0 = thread_seconds();
-    kit->step(model, h, r, v);
+    for (long i = 0; i < batch; ++i)
+      kit->step(model, h, r, v);
     const double t1 = thread_seconds();
-    odeint.do_step(std::ref(system), y, 0.0, h);
+    for (long i = 0; i < batch; ++i)
+      odeint.do_step(std::ref(system), y, 0.0, h);
     const double t2 = thread_seconds();
     kit_seconds += t1 - t0;
     odeint_seconds += t2 - t1;
-    if (++steps % 1000 == 0) {
+    steps += batch;
+    if (steps % 1000 < batch) {  // back to the start about every 1000 steps
       r = start.position;
       v = start.velocity;
       y = y0;
