@@ -2,8 +2,8 @@
 //   (M − h ∂f/∂v − h² ∂f/∂r) Δv = h (f_n + h ∂f/∂r v_n),
 //   v_{n+1} = v_n + Δv,  r_{n+1} = r_n + h v_{n+1}.
 // With the spring Jacobians ∂f/∂r = −K(r_n) and ∂f/∂v = −C the matrix is A = M + hC + h²K,
-// solved by conjugate gradients (Jacobi preconditioner, warm-started with the last Δv; a sparse
-// LDLᵀ factorisation when CG has not converged in 100 iterations).
+// solved by conjugate gradients (Jacobi preconditioner, warm-started with Δv extrapolated from
+// the last two steps; a sparse LDLᵀ factorisation when CG has not converged in 100 iterations).
 // Order 1, one evaluation of a(r, v) a step, no step limit on the springs.
 //
 // - f_n = M a(r_n, v_n) comes from the model, so the forces integrated are the student's and the
@@ -37,7 +37,10 @@ class ImplicitEuler final : public Integrator {
  public:
   std::string_view name() const override { return "implicit-euler"; }
   void step(const Model& model, double h, Vectors& r, Vectors& v) override;
-  void restart() override { guess_.resize(2, 0); }
+  void restart() override {
+    guess_.resize(2, 0);
+    previous_.resize(2, 0);
+  }
 
  private:
   // S = hb I + h²B of one spring, symmetric: what the spring adds to A's pp and qq blocks and
@@ -60,7 +63,8 @@ class ImplicitEuler final : public Integrator {
   std::vector<Block> blocks_;  // per spring, at r_n
   Vectors inverse_diagonal_;   // Jacobi preconditioner: 1 / A's diagonal, 0 where pinned
   Vectors stiffness_times_v_;  // K v_n
-  Vectors rhs_, guess_;        // h (f_n − h K v_n); the last Δv
+  Vectors rhs_, solution_;     // h (f_n − h K v_n) / |…|, Δv / |…|
+  Vectors guess_, previous_;   // the last two steps' Δv (empty after a restart)
   Vectors residual_, direction_, product_, preconditioned_;  // CG's vectors, kept for storage
   // The fallback: A as a sparse matrix over the free coordinates (2 per free particle), with a
   // fixed pattern built on first use; its values refilled through precomputed slots. When
@@ -80,7 +84,7 @@ void ImplicitEuler::prepare(const Model& model) {
   for (std::size_t i = 0; i < model.pinned.size(); ++i)
     if (model.pinned[i]) pinned_.push_back(int(i));
   pattern_built_ = false;
-  guess_.resize(2, 0);
+  restart();
 }
 
 void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vectors& v, double h) {
@@ -90,8 +94,17 @@ void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vector
   Vectors diagonal = model.mass.transpose().replicate<2, 1>();
   for (std::size_t i = 0; i < model.springs.size(); ++i) {
     const Spring& s = model.springs[i];
-    const Eigen::Matrix2d b =
-        stiffness_block(r.col(s.p) - r.col(s.q), s.k, s.rest_length, /*clamp_compressed=*/true);
+    // stiffness_block with clamp_compressed, B = k [(1 − a) û ûᵀ + a I], a = max(0, 1 − ℓ0/L),
+    // with one square root and one division.
+    const Vec2 d = r.col(s.p) - r.col(s.q);
+    const double length2 = d.squaredNorm();
+    Eigen::Matrix2d b = Eigen::Matrix2d::Zero();
+    if (length2 > 0.0) {
+      const double inverse_length = 1.0 / std::sqrt(length2);
+      const double across = std::max(0.0, 1.0 - s.rest_length * inverse_length);
+      b = (s.k * (1.0 - across) * inverse_length * inverse_length) * (d * d.transpose());
+      b.diagonal().array() += s.k * across;
+    }
     const Block block{h * s.b + h * h * b(0, 0), h * h * b(0, 1), h * s.b + h * h * b(1, 1)};
     blocks_[i] = block;
     const Vec2 pull = b * (v.col(s.p) - v.col(s.q));
@@ -248,19 +261,34 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
   rhs_ -= h * h * stiffness_times_v_;
   for (const int i : pinned_)
     rhs_.col(i).setZero();
-  if (guess_.cols() != rhs_.cols()) guess_.setZero(2, rhs_.cols());
   // Solved for Δv / |rhs|, so that CG's tolerance is relative to a right-hand side of norm 1:
   // CG judges convergence by squared norms, which underflow once a decaying motion reaches
   // 1e-155 and would stop it before its first iteration.
   const double scale = rhs_.norm();
+  const bool know_last = guess_.cols() == rhs_.cols();  // the last step's Δv
+  const bool know_two = know_last && previous_.cols() == rhs_.cols();
   if (scale == 0.0) {
-    guess_.setZero();
+    solution_.setZero(2, rhs_.cols());
   } else {
     rhs_ /= scale;
-    guess_ /= scale;
-    if (!conjugate_gradients(model, rhs_, guess_)) guess_ = solve_directly(model, r, h, rhs_);
-    guess_ *= scale;  // Δv, also the next step's first guess
+    // The first guess: Δv extrapolated from the last two steps (it changes smoothly from step to
+    // step), which saves about one CG iteration of six over the last Δv alone.
+    if (know_two) {
+      solution_ = (2.0 * guess_ - previous_) / scale;
+    } else if (know_last) {
+      solution_ = guess_ / scale;
+    } else {
+      solution_.setZero(2, rhs_.cols());
+    }
+    if (!conjugate_gradients(model, rhs_, solution_)) solution_ = solve_directly(model, r, h, rhs_);
+    solution_ *= scale;
   }
+  if (know_last) {
+    previous_.swap(guess_);
+  } else {
+    previous_.resize(2, 0);
+  }
+  guess_ = solution_;  // Δv
   for (const int i : free_.particle) {
     v.col(i) += guess_.col(i);
     r.col(i) += h * v.col(i);
