@@ -52,7 +52,6 @@ class ImplicitEuler final : public Integrator {
   void prepare(const Model& model);
   void linearise(const Model& model, const Vectors& r, const Vectors& v, double h);
   void multiply(const Model& model, const Vectors& x, Vectors& product) const;  // A x
-  bool conjugate_gradients(const Model& model, const Vectors& b, Vectors& x);
   Vectors solve_directly(const Model& model, const Vectors& r, double h, const Vectors& b);
   void build_pattern(const Model& model);
   Eigen::Index slot(int row, int col) const;
@@ -65,7 +64,7 @@ class ImplicitEuler final : public Integrator {
   Vectors stiffness_times_v_;  // K v_n
   Vectors rhs_, solution_;     // h (f_n − h K v_n) / |…|, Δv / |…|
   Vectors guess_, previous_;   // the last two steps' Δv (empty after a restart)
-  Vectors residual_, direction_, product_, preconditioned_;  // CG's vectors, kept for storage
+  ConjugateGradientStorage cg_;
   // The fallback: A as a sparse matrix over the free coordinates (2 per free particle), with a
   // fixed pattern built on first use; its values refilled through precomputed slots. When
   // h²ω_max² is huge (stiff springs, light masses, long steps) A's condition number grows like
@@ -132,39 +131,6 @@ void ImplicitEuler::multiply(const Model& model, const Vectors& x, Vectors& prod
   }
   for (const int i : pinned_)
     product.col(i).setZero();
-}
-
-// Preconditioned CG as Eigen's ConjugateGradient runs it (tolerance 1e-12 on |residual| / |b|,
-// at most 100 iterations), on the operator above. False when it has not converged.
-bool ImplicitEuler::conjugate_gradients(const Model& model, const Vectors& b, Vectors& x) {
-  constexpr double tolerance = 1e-12;
-  constexpr int max_iterations = 100;
-  const double b_norm2 = b.squaredNorm();
-  if (b_norm2 == 0.0) {
-    x.setZero();
-    return true;
-  }
-  const double threshold =
-      std::max(tolerance * tolerance * b_norm2, std::numeric_limits<double>::min());
-  multiply(model, x, product_);
-  residual_ = b - product_;
-  double residual_norm2 = residual_.squaredNorm();
-  if (residual_norm2 < threshold) return true;
-  direction_ = inverse_diagonal_.cwiseProduct(residual_);
-  double rz = residual_.cwiseProduct(direction_).sum();
-  for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    multiply(model, direction_, product_);
-    const double alpha = rz / direction_.cwiseProduct(product_).sum();
-    x += alpha * direction_;
-    residual_ -= alpha * product_;
-    residual_norm2 = residual_.squaredNorm();
-    if (residual_norm2 < threshold) return true;
-    preconditioned_ = inverse_diagonal_.cwiseProduct(residual_);
-    const double rz_old = rz;
-    rz = residual_.cwiseProduct(preconditioned_).sum();
-    direction_ = preconditioned_ + (rz / rz_old) * direction_;
-  }
-  return std::sqrt(residual_norm2 / b_norm2) <= tolerance;
 }
 
 // The position of entry (row, col) in matrix_'s values: found once, when the pattern is built.
@@ -280,7 +246,9 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
     } else {
       solution_.setZero(2, rhs_.cols());
     }
-    if (!conjugate_gradients(model, rhs_, solution_)) solution_ = solve_directly(model, r, h, rhs_);
+    const auto product = [&](const Vectors& x, Vectors& ax) { multiply(model, x, ax); };
+    if (!conjugate_gradients(product, inverse_diagonal_, rhs_, solution_, 1e-12, 100, cg_))
+      solution_ = solve_directly(model, r, h, rhs_);
     solution_ *= scale;
   }
   if (know_last) {
