@@ -28,6 +28,7 @@ function(springlab_object out ns tree file)
     target_link_libraries(${target} PRIVATE springlab_core)
     if(tree STREQUAL "solutions")
       target_link_libraries(${target} PRIVATE springlab_warnings)
+      set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION ${SPRINGLAB_IPO})
     else()  # a student's file or a mutant: warn, never fail the build
       target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS})
     endif()
@@ -66,6 +67,8 @@ function(springlab_add_implementation target ns student_task)
   target_compile_definitions(${target} PRIVATE SPRINGLAB_IMPL=${ns}
                              SPRINGLAB_STUDENT_TASK=${student_task})
   target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings)
+  # Archived with gcc-ar, which indexes the link-time-optimised objects (see CMakeLists.txt).
+  set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION ${SPRINGLAB_IPO})
 endfunction()
 
 springlab_add_implementation(springlab_reference reference 0)

@@ -24,21 +24,26 @@ class RungeKutta4 final : public Integrator {
   std::string_view name() const override { return "rk4"; }
   void step(const Model& model, double h, Vectors& r, Vectors& v) override {
     const auto& a = model.acceleration;
+    // Each stage's position goes into stage_r_, storage kept between steps: an argument such
+    // as r + 0.5 h v would be a new matrix, allocated and freed at every stage.
     k1v_ = a(r, v);
     k2r_ = v + 0.5 * h * k1v_;
-    k2v_ = a(r + 0.5 * h * v, k2r_);
+    stage_r_ = r + 0.5 * h * v;
+    k2v_ = a(stage_r_, k2r_);
     k3r_ = v + 0.5 * h * k2v_;
-    k3v_ = a(r + 0.5 * h * k2r_, k3r_);
+    stage_r_ = r + 0.5 * h * k2r_;
+    k3v_ = a(stage_r_, k3r_);
     k4r_ = v + h * k3v_;
-    k4v_ = a(r + h * k3r_, k4r_);
+    stage_r_ = r + h * k3r_;
+    k4v_ = a(stage_r_, k4r_);
     r += h / 6.0 * (v + 2.0 * k2r_ + 2.0 * k3r_ + k4r_);
     v += h / 6.0 * (k1v_ + 2.0 * k2v_ + 2.0 * k3v_ + k4v_);
   }
 
  private:
   // Stage slopes, kept between steps only to reuse their storage: k_i r is a velocity and
-  // k_i v an acceleration (k1 r is v itself).
-  Vectors k1v_, k2r_, k2v_, k3r_, k3v_, k4r_, k4v_;
+  // k_i v an acceleration (k1 r is v itself); stage_r_ is the position a stage is evaluated at.
+  Vectors k1v_, k2r_, k2v_, k3r_, k3v_, k4r_, k4v_, stage_r_;
 };
 
 }  // namespace

@@ -2,8 +2,8 @@
 //   (M − h ∂f/∂v − h² ∂f/∂r) Δv = h (f_n + h ∂f/∂r v_n),
 //   v_{n+1} = v_n + Δv,  r_{n+1} = r_n + h v_{n+1}.
 // With the spring Jacobians ∂f/∂r = −K(r_n) and ∂f/∂v = −C the matrix is A = M + hC + h²K,
-// solved by conjugate gradients (Jacobi preconditioner, warm-started with the last Δv; a sparse
-// LDLᵀ factorisation when CG has not converged in 100 iterations).
+// solved by conjugate gradients (Jacobi preconditioner, warm-started with Δv extrapolated from
+// the last two steps; a sparse LDLᵀ factorisation when CG has not converged in 100 iterations).
 // Order 1, one evaluation of a(r, v) a step, no step limit on the springs.
 //
 // - f_n = M a(r_n, v_n) comes from the model, so the forces integrated are the student's and the
@@ -11,55 +11,127 @@
 //   explicit).
 // - K drops the negative transverse stiffness of compressed springs (stiffness_block with
 //   clamp_compressed): then K is positive semi-definite, A positive definite, and CG applies.
-// - A has a fixed sparsity pattern: built once per set of springs and pins, its values refilled
-//   each step through precomputed slots (rebuilding from triplets would cost far more than the
-//   force evaluation).
-// - Pinned particles have no unknowns at all: their rows and columns are left out, so they stay
-//   exactly where they are.
+// - CG never sees A as a matrix: each spring's 2×2 block S = hb I + h²B (B = stiffness_block) is
+//   computed once a step, and A x = M x + Σ_springs S (x_p − x_q), added to p and taken from q.
+//   That product reads 3 numbers a spring where a stored sparse A holds 16 entries a spring with
+//   their indices: about 4 times faster, and no matrix to fill. (At the lab's values CG needs a
+//   few iterations, so the step costs a handful of force evaluations; see
+//   tests/benchmarks/README.md.) The sparse matrix is built only for the LDLᵀ fallback.
+// - Pinned particles have no unknowns: their Δv is held at zero in every CG vector (A x is
+//   zeroed there, and so is the preconditioner), so they stay exactly where they are.
 #include "integrators.hpp"
 #include "spring_matrices.hpp"
 #include "springlab/errors.hpp"
 
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 
 namespace springlab::detail {
 namespace {
 
 class ImplicitEuler final : public Integrator {
  public:
-  ImplicitEuler() {
-    jacobi_.setTolerance(1e-12);
-    jacobi_.setMaxIterations(100);
-  }
   std::string_view name() const override { return "implicit-euler"; }
   void step(const Model& model, double h, Vectors& r, Vectors& v) override;
-  void restart() override { guess_.resize(0); }
+  void restart() override {
+    guess_.resize(2, 0);
+    previous_.resize(2, 0);
+  }
 
  private:
+  // S = hb I + h²B of one spring, symmetric: what the spring adds to A's pp and qq blocks and
+  // takes from its pq and qp blocks.
+  struct Block {
+    double xx, xy, yy;
+  };
+
+  void prepare(const Model& model);
+  void linearise(const Model& model, const Vectors& r, const Vectors& v, double h);
+  void multiply(const Model& model, const Vectors& x, Vectors& product) const;  // A x
+  Vectors solve_directly(const Model& model, const Vectors& r, double h, const Vectors& b);
   void build_pattern(const Model& model);
-  void assemble(const Model& model, const Vectors& r, const Vectors& v, double h);
   Eigen::Index slot(int row, int col) const;
-  Eigen::VectorXd solve(const Eigen::VectorXd& b, double scale);  // A x = b/scale, |b| = scale
 
   ModelFingerprint fingerprint_;
   FreeParticles free_{{}};
-  Eigen::SparseMatrix<double> matrix_;  // A over the free coordinates (2 per free particle)
+  std::vector<int> pinned_;    // the pinned particles
+  std::vector<Block> blocks_;  // per spring, at r_n
+  Vectors inverse_diagonal_;   // Jacobi preconditioner: 1 / A's diagonal, 0 where pinned
+  Vectors stiffness_times_v_;  // K v_n
+  Vectors rhs_, solution_;     // h (f_n − h K v_n) / |…|, Δv / |…|
+  Vectors guess_, previous_;   // the last two steps' Δv (empty after a restart)
+  ConjugateGradientStorage cg_;
+  // The fallback: A as a sparse matrix over the free coordinates (2 per free particle), with a
+  // fixed pattern built on first use; its values refilled through precomputed slots. When
+  // h²ω_max² is huge (stiff springs, light masses, long steps) A's condition number grows like
+  // it and CG would need thousands of iterations; the factorisation's cost does not depend on it.
+  bool pattern_built_ = false;
+  Eigen::SparseMatrix<double> matrix_;
   Eigen::VectorXd mass_values_, damping_values_;     // M and C, in matrix_'s value order
   std::vector<std::array<Eigen::Index, 16>> slots_;  // per spring: its K entries, -1 if pinned
-  Eigen::VectorXd stiffness_times_v_;                // K v_n over the free coordinates
-  Eigen::VectorXd guess_;                            // the last Δv
-  // A is solved by CG with a Jacobi preconditioner: at the lab's values A ≈ M(1 + h²ω²) and a few
-  // iterations suffice. When h²ω_max² is huge (stiff springs, light masses, long steps) A's
-  // condition number grows like it and CG would need thousands of iterations; after 100 the
-  // step falls back to a sparse LDLᵀ factorisation of A (its ordering computed once, as the
-  // pattern is fixed), whose cost does not depend on the conditioning.
-  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> jacobi_;
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> direct_;
   bool analysed_ = false;
 };
+
+void ImplicitEuler::prepare(const Model& model) {
+  free_ = FreeParticles(model.pinned);
+  pinned_.clear();
+  for (std::size_t i = 0; i < model.pinned.size(); ++i)
+    if (model.pinned[i]) pinned_.push_back(int(i));
+  pattern_built_ = false;
+  restart();
+}
+
+void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vectors& v, double h) {
+  const Eigen::Index n = r.cols();
+  blocks_.resize(model.springs.size());
+  stiffness_times_v_.setZero(2, n);
+  Vectors diagonal = model.mass.transpose().replicate<2, 1>();
+  for (std::size_t i = 0; i < model.springs.size(); ++i) {
+    const Spring& s = model.springs[i];
+    // stiffness_block with clamp_compressed, B = k [(1 − a) û ûᵀ + a I], a = max(0, 1 − ℓ0/L),
+    // with one square root and one division.
+    const Vec2 d = r.col(s.p) - r.col(s.q);
+    const double length2 = d.squaredNorm();
+    Eigen::Matrix2d b = Eigen::Matrix2d::Zero();
+    if (length2 > 0.0) {
+      const double inverse_length = 1.0 / std::sqrt(length2);
+      const double across = std::max(0.0, 1.0 - s.rest_length * inverse_length);
+      b = (s.k * (1.0 - across) * inverse_length * inverse_length) * (d * d.transpose());
+      b.diagonal().array() += s.k * across;
+    }
+    const Block block{h * s.b + h * h * b(0, 0), h * h * b(0, 1), h * s.b + h * h * b(1, 1)};
+    blocks_[i] = block;
+    const Vec2 pull = b * (v.col(s.p) - v.col(s.q));
+    stiffness_times_v_.col(s.p) += pull;
+    stiffness_times_v_.col(s.q) -= pull;
+    diagonal.col(s.p) += Vec2(block.xx, block.yy);
+    diagonal.col(s.q) += Vec2(block.xx, block.yy);
+  }
+  inverse_diagonal_ = diagonal.cwiseInverse();
+  for (const int i : pinned_)
+    inverse_diagonal_.col(i).setZero();
+}
+
+void ImplicitEuler::multiply(const Model& model, const Vectors& x, Vectors& product) const {
+  product.noalias() = x * model.mass.asDiagonal();
+  for (std::size_t i = 0; i < model.springs.size(); ++i) {
+    const Spring& s = model.springs[i];
+    const Block& b = blocks_[i];
+    const double dx = x(0, s.p) - x(0, s.q), dy = x(1, s.p) - x(1, s.q);
+    const double fx = b.xx * dx + b.xy * dy, fy = b.xy * dx + b.yy * dy;
+    product(0, s.p) += fx;
+    product(1, s.p) += fy;
+    product(0, s.q) -= fx;
+    product(1, s.q) -= fy;
+  }
+  for (const int i : pinned_)
+    product.col(i).setZero();
+}
 
 // The position of entry (row, col) in matrix_'s values: found once, when the pattern is built.
 Eigen::Index ImplicitEuler::slot(int row, int col) const {
@@ -69,7 +141,6 @@ Eigen::Index ImplicitEuler::slot(int row, int col) const {
 }
 
 void ImplicitEuler::build_pattern(const Model& model) {
-  free_ = FreeParticles(model.pinned);
   const int n = 2 * free_.size();
   // Each spring couples the two coordinates of each free end with each other: four 2×2 blocks.
   std::vector<Eigen::Triplet<double>> entries;
@@ -111,16 +182,18 @@ void ImplicitEuler::build_pattern(const Model& model) {
     }
     slots_.push_back(spring_slots);
   }
-  guess_.resize(0);
+  pattern_built_ = true;
 }
 
-void ImplicitEuler::assemble(const Model& model, const Vectors& r, const Vectors& v, double h) {
+// A x = b by a sparse LDLᵀ factorisation of A assembled at r_n (b and x: one column a particle).
+Vectors ImplicitEuler::solve_directly(const Model& model, const Vectors& r, double h,
+                                      const Vectors& b) {
+  if (!pattern_built_) build_pattern(model);
   Eigen::Map<Eigen::VectorXd> values(matrix_.valuePtr(), matrix_.nonZeros());
   values = mass_values_ + h * damping_values_;
-  stiffness_times_v_.setZero(2 * free_.size());
   for (std::size_t n = 0; n < model.springs.size(); ++n) {
     const Spring& s = model.springs[n];
-    const Eigen::Matrix2d b =
+    const Eigen::Matrix2d block =
         stiffness_block(r.col(s.p) - r.col(s.q), s.k, s.rest_length, /*clamp_compressed=*/true);
     const std::array<Eigen::Index, 16>& where = slots_[n];
     for (std::size_t k = 0; k < 4; ++k) {
@@ -128,50 +201,64 @@ void ImplicitEuler::assemble(const Model& model, const Vectors& r, const Vectors
       for (int i = 0; i < 2; ++i)
         for (int j = 0; j < 2; ++j)
           if (const Eigen::Index at = where[4 * k + std::size_t(2 * i + j)]; at >= 0)
-            values[at] += sign * b(i, j);
+            values[at] += sign * block(i, j);
     }
-    const Vec2 pull = b * (v.col(s.p) - v.col(s.q));
-    if (const int p = free_.index[std::size_t(s.p)]; p >= 0)
-      stiffness_times_v_.segment<2>(2 * p) += pull;
-    if (const int q = free_.index[std::size_t(s.q)]; q >= 0)
-      stiffness_times_v_.segment<2>(2 * q) -= pull;
   }
-}
-
-Eigen::VectorXd ImplicitEuler::solve(const Eigen::VectorXd& rhs, double scale) {
-  // Solved for Δv/scale, so that CG's tolerance is relative to a right-hand side of norm 1.
-  const Eigen::VectorXd b = rhs / scale;
-  jacobi_.compute(matrix_);
-  const Eigen::VectorXd x = jacobi_.solveWithGuess(b, guess_ / scale);
-  if (jacobi_.info() == Eigen::Success) return x;
   if (!analysed_) direct_.analyzePattern(matrix_), analysed_ = true;
   direct_.factorize(matrix_);
   if (direct_.info() != Eigen::Success)
     throw StepFailed("the implicit step's matrix M + hC + h^2 K could not be factorised");
-  return direct_.solve(b);
+  Eigen::VectorXd free_b(2 * free_.size());
+  for (int j = 0; j < free_.size(); ++j)
+    free_b.segment<2>(2 * j) = b.col(free_.particle[std::size_t(j)]);
+  const Eigen::VectorXd free_x = direct_.solve(free_b);
+  Vectors x = Vectors::Zero(2, b.cols());
+  for (int j = 0; j < free_.size(); ++j)
+    x.col(free_.particle[std::size_t(j)]) = free_x.segment<2>(2 * j);
+  return x;
 }
 
 void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
-  if (fingerprint_.changed(model)) build_pattern(model);
+  if (fingerprint_.changed(model)) prepare(model);
   if (free_.size() == 0) return;
   const Vectors& a = model.acceleration(r, v);
-  Eigen::VectorXd rhs(2 * free_.size());
-  for (int j = 0; j < free_.size(); ++j) {
-    const int i = free_.particle[std::size_t(j)];
-    rhs.segment<2>(2 * j) = h * model.mass[i] * a.col(i);  // h f_n
+  linearise(model, r, v, h);
+  rhs_ = h * (a * model.mass.asDiagonal());  // h f_n
+  rhs_ -= h * h * stiffness_times_v_;
+  for (const int i : pinned_)
+    rhs_.col(i).setZero();
+  // Solved for Δv / |rhs|, so that CG's tolerance is relative to a right-hand side of norm 1:
+  // CG judges convergence by squared norms, which underflow once a decaying motion reaches
+  // 1e-155 and would stop it before its first iteration.
+  const double scale = rhs_.norm();
+  const bool know_last = guess_.cols() == rhs_.cols();  // the last step's Δv
+  const bool know_two = know_last && previous_.cols() == rhs_.cols();
+  if (scale == 0.0) {
+    solution_.setZero(2, rhs_.cols());
+  } else {
+    rhs_ /= scale;
+    // The first guess: Δv extrapolated from the last two steps (it changes smoothly from step to
+    // step), which saves about one CG iteration of six over the last Δv alone.
+    if (know_two) {
+      solution_ = (2.0 * guess_ - previous_) / scale;
+    } else if (know_last) {
+      solution_ = guess_ / scale;
+    } else {
+      solution_.setZero(2, rhs_.cols());
+    }
+    const auto product = [&](const Vectors& x, Vectors& ax) { multiply(model, x, ax); };
+    if (!conjugate_gradients(product, inverse_diagonal_, rhs_, solution_, 1e-12, 100, cg_))
+      solution_ = solve_directly(model, r, h, rhs_);
+    solution_ *= scale;
   }
-  assemble(model, r, v, h);
-  rhs -= h * h * stiffness_times_v_;
-  if (guess_.size() != rhs.size()) guess_.setZero(rhs.size());
-  // Solved for Δv / |rhs|: CG judges convergence by squared norms, which underflow once a
-  // decaying motion reaches 1e-155 and would stop it before its first iteration.
-  const double scale = rhs.norm();
-  const Eigen::VectorXd dv =
-      scale == 0.0 ? Eigen::VectorXd::Zero(rhs.size()).eval() : scale * solve(rhs, scale);
-  guess_ = dv;
-  for (int j = 0; j < free_.size(); ++j) {
-    const int i = free_.particle[std::size_t(j)];
-    v.col(i) += dv.segment<2>(2 * j);
+  if (know_last) {
+    previous_.swap(guess_);
+  } else {
+    previous_.resize(2, 0);
+  }
+  guess_ = solution_;  // Δv
+  for (const int i : free_.particle) {
+    v.col(i) += guess_.col(i);
     r.col(i) += h * v.col(i);
   }
 }

@@ -47,6 +47,8 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
   const Particles& particles = scene_.particles;
   const SceneParameters& p = scene_.parameters;
   inverse_mass_ = particles.mass.cwiseInverse();
+  any_pinned_ =
+      std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
   start_position_ = particles.position;
   if (p.wind.enabled) wind_.emplace(p.wind);
   pushed_ = select_particles("pushed", p.pushed, p.rows, p.cols);
@@ -72,8 +74,7 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
     for (int i : pushed_)
       force_.col(i) += p.push;
   acceleration_.noalias() = force_ * inverse_mass_.asDiagonal();
-  if (std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end())
-    impl_->hold_pinned(particles.pinned, acceleration_);
+  if (any_pinned_) impl_->hold_pinned(particles.pinned, acceleration_);
   return acceleration_;
 }
 
@@ -130,6 +131,8 @@ void Simulation::set_pinned(int i, bool pinned) {
   check_index(i);
   Particles& particles = scene_.particles;
   particles.pinned[i] = pinned;  // the model's hold_pinned (5.5) now holds it
+  any_pinned_ =
+      std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
   if (pinned) particles.velocity.col(i).setZero();
   integrator_->restart();
 }

@@ -6,17 +6,6 @@
 
 namespace springlab::detail {
 
-Eigen::Matrix2d stiffness_block(const Vec2& d, double k, double rest_length,
-                                bool clamp_compressed) {
-  const double length = d.norm();
-  if (length == 0.0) return Eigen::Matrix2d::Zero();
-  const Vec2 u = d / length;
-  const Eigen::Matrix2d along = u * u.transpose();
-  double across = 1.0 - rest_length / length;
-  if (clamp_compressed && across < 0.0) across = 0.0;
-  return k * (along + across * (Eigen::Matrix2d::Identity() - along));
-}
-
 FreeParticles::FreeParticles(const std::vector<bool>& pinned) : index(pinned.size(), -1) {
   for (std::size_t i = 0; i < pinned.size(); ++i)
     if (!pinned[i]) {

@@ -6,6 +6,9 @@
 
 #include <Eigen/SparseCore>
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace springlab::detail {
@@ -15,7 +18,17 @@ namespace springlab::detail {
 /// (1 − ℓ0/L), negative for a compressed spring, is raised to 0: B stays positive semi-definite,
 /// which keeps the implicit system positive definite. L = 0 gives B = 0: the kit's spring force is
 /// zero there (no direction to push along), and so is its derivative.
-Eigen::Matrix2d stiffness_block(const Vec2& d, double k, double rest_length, bool clamp_compressed);
+/// Inline: the implicit step computes one for every spring at every step.
+inline Eigen::Matrix2d stiffness_block(const Vec2& d, double k, double rest_length,
+                                       bool clamp_compressed) {
+  const double length = d.norm();
+  if (length == 0.0) return Eigen::Matrix2d::Zero();
+  const Vec2 u = d / length;
+  const Eigen::Matrix2d along = u * u.transpose();
+  double across = 1.0 - rest_length / length;
+  if (clamp_compressed && across < 0.0) across = 0.0;
+  return k * (along + across * (Eigen::Matrix2d::Identity() - along));
+}
 
 /// The free (unpinned) particles numbered 0 … size()-1 in their original order.
 struct FreeParticles {
@@ -30,6 +43,53 @@ struct FreeParticles {
 /// free end's diagonal, as the pinned end never moves.
 Eigen::SparseMatrix<double> scalar_damping(const std::vector<Spring>& springs,
                                            const FreeParticles& free);
+
+}  // namespace springlab::detail
+
+namespace springlab::detail {
+
+/// The vectors conjugate_gradients works with, kept by its caller to reuse their storage.
+struct ConjugateGradientStorage {
+  Vectors residual, direction, product, preconditioned;
+};
+
+/// Solves A x = b for a symmetric positive definite A given only as a product,
+/// multiply(x, product) setting product = A x, by conjugate gradients with the diagonal
+/// preconditioner inverse_diagonal (1/A_ii; 0 for a coordinate held at zero, where b and
+/// every product must be 0 too). The same iteration as Eigen's ConjugateGradient: it stops when
+/// |b − A x| < tolerance |b| or after max_iterations, starting from x as given.
+/// b, x: one column per particle. False when it has not converged.
+template <class Multiply>
+bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, const Vectors& b,
+                         Vectors& x, double tolerance, int max_iterations,
+                         ConjugateGradientStorage& cg) {
+  const double b_norm2 = b.squaredNorm();
+  if (b_norm2 == 0.0) {
+    x.setZero(b.rows(), b.cols());
+    return true;
+  }
+  const double threshold =
+      std::max(tolerance * tolerance * b_norm2, std::numeric_limits<double>::min());
+  multiply(x, cg.product);
+  cg.residual = b - cg.product;
+  double residual_norm2 = cg.residual.squaredNorm();
+  if (residual_norm2 < threshold) return true;
+  cg.direction = inverse_diagonal.cwiseProduct(cg.residual);
+  double rz = cg.residual.cwiseProduct(cg.direction).sum();
+  for (int iteration = 0; iteration < max_iterations; ++iteration) {
+    multiply(cg.direction, cg.product);
+    const double alpha = rz / cg.direction.cwiseProduct(cg.product).sum();
+    x += alpha * cg.direction;
+    cg.residual -= alpha * cg.product;
+    residual_norm2 = cg.residual.squaredNorm();
+    if (residual_norm2 < threshold) return true;
+    cg.preconditioned = inverse_diagonal.cwiseProduct(cg.residual);
+    const double rz_old = rz;
+    rz = cg.residual.cwiseProduct(cg.preconditioned).sum();
+    cg.direction = cg.preconditioned + (rz / rz_old) * cg.direction;
+  }
+  return std::sqrt(residual_norm2 / b_norm2) <= tolerance;
+}
 
 }  // namespace springlab::detail
 

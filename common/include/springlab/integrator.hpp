@@ -19,9 +19,10 @@
 //                     mode, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24; undamped h < 2√2/ω_max.
 //   implicit-euler    backward Euler linearised once per step (Baraff & Witkin 1998), solved by
 //                     conjugate gradients (a sparse LDLᵀ when CG stalls on a stiff system).
-//                     Order 1. Cost 1 plus assembling the spring Jacobian and a few CG iterations
-//                     (about 15 evaluations' worth on a 100×100 grid). No step limit on the
-//                     springs (it damps, ≈ hω/2 a step).
+//                     Order 1. Cost 1 plus the springs' Jacobian blocks and a few matrix-free CG
+//                     iterations (about 10 evaluations' worth in all on fabrics from 10×10 to
+//                     300×300, tests/benchmarks/README.md). No step limit on the springs (it
+//                     damps, ≈ hω/2 a step).
 #pragma once
 
 #include "springlab/implementation.hpp"

@@ -92,6 +92,7 @@ class Simulation {
   long steps_ = 0;
   long evaluations_ = 0;
   Eigen::VectorXd inverse_mass_;   // 1/m_i
+  bool any_pinned_ = false;        // whether hold_pinned has anything to hold (set_pinned updates)
   std::optional<WindField> wind_;  // when the scene has wind
   std::vector<int> pushed_;        // the particles the push acts on
   Vectors start_position_;         // where gravity's potential energy is zero

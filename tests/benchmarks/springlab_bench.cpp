@@ -1,0 +1,240 @@
+// springlab-bench: how fast the force code and each integrator run on the task 5 fabric, from
+// 10×10 to 1000×1000 particles (README.md beside this file explains each row and lists figures).
+//
+//   force/springs/N        the reference accumulate_spring_forces (tasks 1–2) alone: ns_per_spring
+//   force/model/N          Simulation::acceleration without wind: springs, gravity, pins
+//   force/model+wind/N     the same with the lab's gusty wind (the task 5 scene as shipped)
+//   step/METHOD/N          one step of each of the six integrators on the model without wind:
+//                          steps_per_s, evaluations_per_step, and cost_in_evaluations, the step's
+//                          time over the time of one force evaluation, measured in alternation
+//   rk4-vs-odeint/N        the kit's rk4 and Boost.Odeint's runge_kutta4 stepping the same model
+//                          in alternation: kit_over_odeint < 1 means the kit's step is faster
+//
+// Times are the CPU time of this thread. The counters are the figures: in the step/ and
+// rk4-vs-odeint/ rows the Time column is that of one iteration, a batch of steps and as many
+// evaluations or Odeint steps (one of each from 150×150 up). Every fabric starts as the lab's
+// scene does, flat and at rest under its pinned top row, then falls for 0.3 s (30 symplectic
+// Euler steps) so that its springs are stretched and moving; each step benchmark goes back to
+// that state every 1000 steps (explicit Euler, unstable at the lab's h on a fabric, every 100)
+// so no run drifts into overflow.
+#include "odeint_system.hpp"
+#include "springlab/scene.hpp"
+#include "springlab/simulation.hpp"
+#include "springlab/this_implementation.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <ctime>
+#include <memory>
+#include <string>
+#include <vector>
+
+using namespace springlab;
+
+namespace {
+
+// s of CPU time used by this thread.
+double thread_seconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+// The task 5 fabric at n×n, with or without its wind, 0.3 s into its fall. One at a time is
+// kept (a 1000×1000 fabric holds 6 million springs): benchmarks are registered grouped by fabric.
+class Fabric {
+ public:
+  static Fabric& get(int n, bool wind) {
+    static std::unique_ptr<Fabric> current;
+    if (!current || current->n_ != n || current->wind_ != wind) {
+      current.reset();
+      current.reset(new Fabric(n, wind));
+    }
+    return *current;
+  }
+
+  Simulation& simulation() { return *simulation_; }
+  const Scene& scene() const { return simulation_->scene(); }
+  double springs() const { return double(scene().springs.size()); }
+
+  // The model as an integrator sees it (Simulation::step passes the same).
+  const AccelerationFunction& acceleration() const { return acceleration_; }
+  Model model() const {
+    return Model{acceleration_, scene().springs, scene().particles.mass, scene().particles.pinned};
+  }
+
+ private:
+  Fabric(int n, bool wind) : n_(n), wind_(wind) {
+    SceneParameters p = task_scene(5);
+    p.rows = n;
+    p.cols = n;
+    p.wind.enabled = wind;
+    p.integrator = "symplectic-euler";  // for the fall only: one evaluation a step
+    simulation_ = std::make_unique<Simulation>(p, implementation());
+    simulation_->advance(30);
+    acceleration_ = [sim = simulation_.get()](const Vectors& r,
+                                              const Vectors& v) -> const Vectors& {
+      return sim->acceleration(r, v);
+    };
+  }
+
+  int n_;
+  bool wind_;
+  std::unique_ptr<Simulation> simulation_;
+  AccelerationFunction acceleration_;
+};
+
+void force_springs(benchmark::State& state, int n) {
+  Fabric& fabric = Fabric::get(n, false);
+  const Scene& scene = fabric.scene();
+  const Implementation& impl = implementation();
+  Vectors force = Vectors::Zero(2, scene.particles.size());
+  const double begin = thread_seconds();
+  for (auto _ : state) {
+    // Not cleared between calls: this row is the spring code alone. The sums grow but stay
+    // finite (|F| ~ 10 N, at most ~1e7 calls).
+    impl.accumulate_spring_forces(scene.springs, scene.particles.position, scene.particles.velocity,
+                                  force);
+    benchmark::DoNotOptimize(force.data());
+  }
+  const double seconds = thread_seconds() - begin;
+  state.counters["ns_per_spring"] = 1e9 * seconds / double(state.iterations()) / fabric.springs();
+  state.counters["springs"] = fabric.springs();
+}
+
+void force_model(benchmark::State& state, int n, bool wind) {
+  Fabric& fabric = Fabric::get(n, wind);
+  Simulation& simulation = fabric.simulation();
+  const Particles& particles = fabric.scene().particles;
+  const double begin = thread_seconds();
+  for (auto _ : state)
+    benchmark::DoNotOptimize(
+        simulation.acceleration(particles.position, particles.velocity).data());
+  const double ns = 1e9 * (thread_seconds() - begin) / double(state.iterations());
+  state.counters["ns_per_spring"] = ns / fabric.springs();
+  state.counters["ns_per_particle"] = ns / double(particles.size());
+}
+
+// Steps per batch: about 20000 particle-steps, so that reading the clock (a system call of
+// about a microsecond) costs nothing measurable even on the 10×10 fabric.
+long batch_size(int n) {
+  return std::max(1L, 20000L / (long(n) * n));
+}
+
+// Each iteration is a batch of steps, then as many force evaluations at the state reached, each
+// batch timed: the cost in evaluations is a ratio of times measured side by side, which the
+// other work of a shared machine disturbs far less than two separate benchmarks.
+void step(benchmark::State& state, int n, const std::string& method) {
+  Fabric& fabric = Fabric::get(n, false);
+  Simulation& simulation = fabric.simulation();
+  const Model model = fabric.model();
+  const Particles& start = fabric.scene().particles;
+  const double h = fabric.scene().parameters.step;
+  const std::unique_ptr<Integrator> integrator = make_integrator(method, implementation());
+  Vectors r = start.position, v = start.velocity;
+  integrator->step(model, h, r, v);  // builds what the method keeps (patterns, matrices)
+  simulation.acceleration(r, v);
+  const long restart_every = method == "explicit-euler" ? 100 : 1000;
+  const long batch = batch_size(n);
+  long steps = 0, step_evaluations = 0;
+  double step_seconds = 0.0, evaluation_seconds = 0.0;
+  for (auto _ : state) {
+    const long before = simulation.force_evaluations();
+    const double t0 = thread_seconds();
+    for (long i = 0; i < batch; ++i)
+      integrator->step(model, h, r, v);
+    const double t1 = thread_seconds();
+    step_evaluations += simulation.force_evaluations() - before;
+    for (long i = 0; i < batch; ++i)
+      benchmark::DoNotOptimize(simulation.acceleration(r, v).data());
+    const double t2 = thread_seconds();
+    step_seconds += t1 - t0;
+    evaluation_seconds += t2 - t1;
+    steps += batch;
+    if (steps % restart_every < batch) {  // back to the start state now and then
+      r = start.position;
+      v = start.velocity;
+      integrator->restart();
+    }
+  }
+  state.counters["steps_per_s"] = double(steps) / step_seconds;
+  state.counters["evaluations_per_step"] = double(step_evaluations) / double(steps);
+  state.counters["cost_in_evaluations"] = step_seconds / evaluation_seconds;
+  state.counters["evaluation_us"] = 1e6 * evaluation_seconds / double(steps);
+}
+
+// Each iteration is a batch of kit steps, then as many Odeint steps, each batch timed.
+void rk4_vs_odeint(benchmark::State& state, int n) {
+  Fabric& fabric = Fabric::get(n, false);
+  const Model model = fabric.model();
+  const Particles& start = fabric.scene().particles;
+  const double h = fabric.scene().parameters.step;
+  const std::unique_ptr<Integrator> kit = make_integrator("rk4", implementation());
+  Vectors r = start.position, v = start.velocity;
+  OdeintSystem system(fabric.simulation());
+  OdeintRk4 odeint;
+  const OdeintState y0 = odeint_state(start);
+  OdeintState y = y0;
+  kit->step(model, h, r, v);  // both allocate their stage storage once
+  odeint.do_step(std::ref(system), y, 0.0, h);
+  const long batch = batch_size(n);
+  double kit_seconds = 0.0, odeint_seconds = 0.0;
+  long steps = 0;
+  for (auto _ : state) {
+    const double t0 = thread_seconds();
+    for (long i = 0; i < batch; ++i)
+      kit->step(model, h, r, v);
+    const double t1 = thread_seconds();
+    for (long i = 0; i < batch; ++i)
+      odeint.do_step(std::ref(system), y, 0.0, h);
+    const double t2 = thread_seconds();
+    kit_seconds += t1 - t0;
+    odeint_seconds += t2 - t1;
+    steps += batch;
+    if (steps % 1000 < batch) {  // back to the start about every 1000 steps
+      r = start.position;
+      v = start.velocity;
+      y = y0;
+    }
+  }
+  state.counters["kit_over_odeint"] = kit_seconds / odeint_seconds;
+  state.counters["kit_steps_per_s"] = double(steps) / kit_seconds;
+  state.counters["odeint_steps_per_s"] = double(steps) / odeint_seconds;
+}
+
+void register_all() {
+  const std::vector<std::string> methods = integrator_names();
+  for (const int n : {10, 30, 100, 300, 1000}) {
+    const auto add = [n](const std::string& name, auto function) {
+      benchmark::RegisterBenchmark((name + "/" + std::to_string(n)).c_str(), function, n)
+          ->Unit(benchmark::kMicrosecond);
+    };
+    add("force/springs", force_springs);
+    add("force/model", [](benchmark::State& s, int m) { force_model(s, m, false); });
+    for (const std::string& method : methods) {
+      // The implicit step's matrix at 1000×1000 (2 million unknowns, ~100 million entries and
+      // their slots) would take several GB: measured up to 300×300.
+      if (method == "implicit-euler" && n > 300) continue;
+      add("step/" + method, [method](benchmark::State& s, int m) { step(s, m, method); });
+    }
+    add("rk4-vs-odeint", rk4_vs_odeint);
+    add("force/model+wind", [](benchmark::State& s, int m) { force_model(s, m, true); });
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // 0.2 s a benchmark unless --benchmark_min_time says otherwise (later flags win): the whole
+  // default run then takes about a minute.
+  std::vector<char*> args{argv[0], const_cast<char*>("--benchmark_min_time=0.2")};
+  args.insert(args.end(), argv + 1, argv + argc);
+  int count = int(args.size());
+  benchmark::Initialize(&count, args.data());
+  if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
+  register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
