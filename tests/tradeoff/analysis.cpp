@@ -112,7 +112,10 @@ std::vector<std::string> check(const Results& r) {
                          ", theory " + std::to_string(o.theory) + " (allowed +-0.15)");
   }
   for (const StepLimit& c : r.critical) {
-    if (c.theory <= 0.0 || std::isinf(c.theory) || c.scene == "fabric") continue;
+    // Only exact theory is checked, and only what was measured (the fabric's explicit Euler
+    // would need millions of steps).
+    if (c.theory <= 0.0 || std::isinf(c.theory) || c.source.rfind("exact", 0) != 0) continue;
+    if (c.measured <= 0.0 && c.how.rfind("not measured", 0) == 0) continue;
     if (!(std::abs(c.measured / c.theory - 1.0) <= 0.02))
       failures.push_back(c.scene + ", " + c.method + ": measured critical step " +
                          number(c.measured, 5) + " s, theory " + number(c.theory, 5) +

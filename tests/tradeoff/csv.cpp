@@ -34,10 +34,10 @@ void write_csv(const Results& r, const std::string& dir) {
     orders << o.scene << ',' << o.method << ',' << o.theory << ',' << o.measured << ',' << o.h_from
            << ',' << o.h_to << ',' << o.points << '\n';
   std::ofstream critical = open(dir, "critical.csv");
-  critical << "scene,method,theory_s,theory_source,measured_s,how\n";
+  critical << "scene,method,theory_s,theory_source,measured_s,measured_half_width_s,how,about\n";
   for (const StepLimit& c : r.critical)
     critical << c.scene << ',' << c.method << ',' << c.theory << ",\"" << c.source << "\","
-             << c.measured << ",\"" << c.how << "\"\n";
+             << c.measured << ',' << c.half_width << ",\"" << c.how << "\",\"" << c.about << "\"\n";
   std::ofstream reference = open(dir, "reference.csv");
   reference << "scene,reference_error_m,energy_scale_J,evaluation_s,note\n";
   for (std::size_t i = 0; i < r.scenarios.size(); ++i) {

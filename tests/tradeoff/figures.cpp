@@ -99,10 +99,8 @@ std::string critical(const Results& r, const Scenario& s, const fs::path& data,
     if (c.scene == s.name && !std::isinf(c.theory))
       out << c.method << ' ' << (c.theory > 0 ? number(c.theory, 8) : "NaN") << ' '
           << (c.measured > 0 ? number(c.measured, 8) : "NaN") << '\n';
-  const bool linear = s.name != "fabric";
-  const std::string measured =
-      linear ? "measured (bisection, linear motion)" : "largest step a run of the scene survives";
-  const std::string theory = linear ? "theory (stability.hpp)" : "theory at rest (estimate)";
+  const std::string measured = "measured (linear motion about the equilibrium)";
+  const std::string theory = "theory (stability.hpp, at the equilibrium)";
   return header(svg, s.title + ": critical steps", "inside left top") +
          "set style data histogram\nset style histogram clustered gap 1\nset style fill solid "
          "0.8 border -1\nset logscale y\nset ylabel 'critical step h_c (s)'\nset xtics "

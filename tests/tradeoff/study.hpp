@@ -95,10 +95,12 @@ std::vector<Run> run_scene(const Scenario& s, const StudyOptions& options, Progr
 /// The critical step of a method on a scene: from theory (stability.hpp) and by bisection.
 struct StepLimit {
   std::string scene, method;
-  double theory = 0.0;    ///< s
-  std::string source;     ///< how theory got it (exact formula, bisection, estimate)
-  double measured = 0.0;  ///< s, 0 when not measured
-  std::string how;        ///< how it was measured
+  double theory = 0.0;      ///< s
+  std::string source;       ///< how theory got it (exact formula, bisection, estimate)
+  std::string about;        ///< the state theory linearises about ("at rest", …)
+  double measured = 0.0;    ///< s, 0 when not measured
+  double half_width = 0.0;  ///< s, of the bracket measured is the middle of (0: a bisection's end)
+  std::string how;          ///< how it was measured
 };
 
 std::vector<StepLimit> critical_steps(const Scenario& s, const StudyOptions& options,
