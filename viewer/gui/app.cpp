@@ -224,6 +224,7 @@ void App::frame(bool capture) {
 
 void App::draw_scenes() {
   window_.clear(colour::background);
+  panel_.draw_backgrounds(window_);
   const sf::View whole = window_.getView();
   const sf::Vector2u size = window_.getSize();
   const int highlighted = session_.problem().kind == Problem::Kind::diverged
