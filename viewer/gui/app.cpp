@@ -200,8 +200,8 @@ void App::frame(bool capture) {
   phases.panel = lap();
   // Software OpenGL rasterises on threads of its own: the picture drawn and flushed at the end of
   // the last frame is rasterised while this frame steps, then shown. So a frame costs about the
-  // larger of stepping and drawing rather than their sum, and the picture appears one frame
-  // later than it would otherwise (the panel already described the state before the steps).
+  // larger of stepping and rasterising rather than their sum, and each picture (scene and panel
+  // alike, so they agree) reaches the screen one frame, 1/60 s, after it was drawn.
   info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
   info_.stepping_seconds = phases.stepping = lap();
   if (drawn_) window_.display();
