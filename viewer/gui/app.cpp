@@ -7,7 +7,6 @@
 
 #include <SFML/Graphics/Texture.hpp>
 #include <SFML/Graphics/View.hpp>
-#include <SFML/OpenGL.hpp>
 
 #include <chrono>
 #include <cmath>
@@ -198,20 +197,12 @@ void App::frame(bool capture) {
     fitted_to_ = session_.fresh_starts();
   }
   phases.panel = lap();
-  // Software OpenGL rasterises on threads of its own: the picture drawn and flushed at the end of
-  // the last frame is rasterised while this frame steps, then shown. So a frame costs about the
-  // larger of stepping and rasterising rather than their sum, and each picture (scene and panel
-  // alike, so they agree) reaches the screen one frame, 1/60 s, after it was drawn.
   info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
   info_.stepping_seconds = phases.stepping = lap();
-  if (drawn_) window_.display();
-  phases.display = lap();
   draw_scenes();
   phases.scene = lap();
   draw_labels();
   glue_.render();
-  glFlush();
-  drawn_ = true;
   phases.imgui = lap();
   if (capture) {
     sf::Texture texture;
@@ -219,6 +210,8 @@ void App::frame(bool capture) {
     texture.update(window_);
     captured_ = texture.copyToImage();
   }
+  window_.display();
+  phases.display = lap();
   info_.phases = phases;
 }
 

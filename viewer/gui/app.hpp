@@ -68,9 +68,7 @@ class App {
   sf::Vector2f mouse_{-1.0f, -1.0f};
   bool panning_ = false;
   bool shift_ = false;
-  int fitted_to_ = -1;
-  bool drawn_ = false;  // a picture waits in the back buffer for the next frame to show it  // the
-                        // session's fresh start the view was last fitted to
+  int fitted_to_ = -1;  // the session's fresh start the view was last fitted to
 };
 
 }  // namespace springlab::view

@@ -24,14 +24,14 @@ struct ViewSettings {
   Vec2 push_velocity{0.0, 2.0};  ///< m/s, added by a push
 };
 
-/// Where a frame's wall time went, s. Software OpenGL rasterises on its own threads after a
-/// flush, so rasterising counts only where the main thread waits for it: in `display`.
+/// Where a frame's wall time went, s. Software OpenGL rasterises when the frame is shown, so the
+/// rasterising of the scene and the panel counts in `display`, not where it was asked for.
 struct FramePhases {
   double panel = 0.0;     ///< events and building the ImGui panel and plots
   double stepping = 0.0;  ///< advancing the simulation
   double scene = 0.0;     ///< the springs and particles: geometry, pixels, texture upload
   double imgui = 0.0;     ///< handing ImGui's triangles to OpenGL
-  double display = 0.0;   ///< waiting for the last frame's picture, and swapping the buffers
+  double display = 0.0;   ///< rasterising (software OpenGL) and swapping the buffers
 };
 
 /// How the last frame went, for the panel's read-outs.
