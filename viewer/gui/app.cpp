@@ -170,6 +170,16 @@ void App::on_key(sf::Keyboard::Key key) {
 }
 
 void App::frame(bool capture) {
+  using Clock = std::chrono::steady_clock;
+  auto mark = Clock::now();
+  // The seconds since the last mark, which moves to now.
+  const auto lap = [&mark] {
+    const auto now = Clock::now();
+    const double seconds = std::chrono::duration<double>(now - mark).count();
+    mark = now;
+    return seconds;
+  };
+  FramePhases phases;
   sf::Event event;
   while (window_.pollEvent(event))
     handle(event);
@@ -186,11 +196,14 @@ void App::frame(bool capture) {
     fit();
     fitted_to_ = session_.fresh_starts();
   }
-  const auto start = std::chrono::steady_clock::now();
+  phases.panel = lap();
   info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
-  info_.stepping_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  draw();
+  info_.stepping_seconds = phases.stepping = lap();
+  draw_scenes();
+  phases.scene = lap();
+  draw_labels();
+  glue_.render();
+  phases.imgui = lap();
   if (capture) {
     sf::Texture texture;
     texture.create(window_.getSize().x, window_.getSize().y);
@@ -198,10 +211,13 @@ void App::frame(bool capture) {
     captured_ = texture.copyToImage();
   }
   window_.display();
+  phases.display = lap();
+  info_.phases = phases;
 }
 
-void App::draw() {
+void App::draw_scenes() {
   window_.clear(colour::background);
+  panel_.draw_backgrounds(window_);
   const sf::View whole = window_.getView();
   const sf::Vector2u size = window_.getSize();
   const int highlighted = session_.problem().kind == Problem::Kind::diverged
@@ -229,8 +245,6 @@ void App::draw() {
       draw_force_arrows(window_, *sim, camera, info_.hovered);
   }
   window_.setView(whole);
-  draw_labels();
-  glue_.render();
 }
 
 void App::draw_labels() {

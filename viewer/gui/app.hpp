@@ -50,7 +50,7 @@ class App {
   int view_at(sf::Vector2f point) const;
   int hovered() const;
   void layout();
-  void draw();
+  void draw_scenes();
   void draw_labels();
   void on_press(const sf::Event::MouseButtonEvent& button);
   void on_key(sf::Keyboard::Key key);

@@ -6,10 +6,12 @@
 
 #include <imgui.h>
 
+#include <SFML/Graphics/Vertex.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <set>
+#include <iterator>
 
 namespace springlab::view {
 namespace {
@@ -29,6 +31,34 @@ void Panel::remember(const std::string& name) {
   rects_[name] = {min.x, min.y, max.x, max.y};
 }
 
+void Panel::remember_background() {
+  const ImVec2 at = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  const ImVec2 far(at.x + size.x, at.y + size.y);
+  backgrounds_.push_back({at.x, at.y, far.x, far.y});
+  // The outline ImGui leaves out with the background, as ImGui draws it.
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->PushClipRect(at, far);
+  draw->AddRect(at, far, ImGui::GetColorU32(ImGuiCol_Border), 0.0f, 0,
+                ImGui::GetStyle().WindowBorderSize);
+  draw->PopClipRect();
+}
+
+void Panel::draw_backgrounds(sf::RenderTarget& target) const {
+  // ImGui's window colour over the window's background, as ImGui's blending would give it.
+  const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
+  const auto over = [&bg](float c, sf::Uint8 under) {
+    return sf::Uint8(std::lround(255.0f * c * bg.w + float(under) * (1.0f - bg.w)));
+  };
+  const sf::Color c(over(bg.x, colour::background.r), over(bg.y, colour::background.g),
+                    over(bg.z, colour::background.b));
+  std::vector<sf::Vertex> quads;
+  for (const WidgetRect& r : backgrounds_)
+    for (sf::Vector2f corner : {sf::Vector2f(r.left, r.top), sf::Vector2f(r.right, r.top),
+                                sf::Vector2f(r.right, r.bottom), sf::Vector2f(r.left, r.bottom)})
+      quads.emplace_back(corner, c);
+  target.draw(quads.data(), quads.size(), sf::Quads, sf::RenderStates(sf::BlendNone));
+}
+
 std::optional<WidgetRect> Panel::rect(const std::string& name) const {
   if (const auto found = rects_.find(name); found != rects_.end()) return found->second;
   if (const auto found = parameters_.rects().find(name); found != parameters_.rects().end())
@@ -39,11 +69,14 @@ std::optional<WidgetRect> Panel::rect(const std::string& name) const {
 PanelRequests Panel::draw(Session& session, ViewSettings& settings, const FrameInfo& frame,
                           const Viewport& scene_area) {
   PanelRequests requests;
+  backgrounds_.clear();
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x - width, 0));
   ImGui::SetNextWindowSize(ImVec2(width, display.y));
   ImGui::Begin("springlab", nullptr,
-               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
+               ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                   ImGuiWindowFlags_NoBackground);
+  remember_background();
   ImGui::PushItemWidth(-170.0f);  // room for the labels, which carry key and unit
   scene_section(session);
   run_section(session, requests);
@@ -157,11 +190,13 @@ void Panel::stepping_section(Session& session, const FrameInfo& frame) {
 
 void Panel::display_section(Session& session, ViewSettings& settings) {
   const Simulation* sim = session.primary();
-  std::set<int> families;
+  // A flag per family, not a std::set: a 100×100 fabric has 59,000 springs to look through.
+  std::array<bool, std::size(spring_families)> present{};
   if (sim)
     for (const Spring& s : sim->scene().springs)
-      families.insert(int(s.family));
-  for (int family : families) {
+      present[std::size_t(s.family)] = true;
+  for (int family = 0; family < int(present.size()); ++family) {
+    if (!present[std::size_t(family)]) continue;
     bool shown = !settings.draw.hidden_families.count(family);
     const std::string label = std::string(to_string(SpringFamily(family))) + " springs";
     if (ImGui::Checkbox(label.c_str(), &shown)) {
@@ -215,7 +250,10 @@ void Panel::particle_section(Session& session, ViewSettings& settings, const Fra
 void Panel::plots(const Session& session, const Viewport& scene_area) {
   ImGui::SetNextWindowPos(ImVec2(scene_area.left, scene_area.top + scene_area.height));
   ImGui::SetNextWindowSize(ImVec2(scene_area.width, plot_height));
-  ImGui::Begin("##plots", nullptr, ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove);
+  ImGui::Begin(
+      "##plots", nullptr,
+      ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoBackground);
+  remember_background();
   const History& h = session.history();
   ImGui::Columns(2, nullptr, false);
   ImGui::Text("energy over the last %.1f s",

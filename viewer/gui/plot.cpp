@@ -33,7 +33,9 @@ void plot(const char* id, const char* unit, std::initializer_list<Series> series
       const float x = corner.x + width * float(i) / float(std::max<std::size_t>(samples - 1, 1));
       points.emplace_back(x, corner.y + height * (high - v[i]) / (high - low));
     }
-    if (points.size() > 1) draw->AddPolyline(points.data(), int(points.size()), s.colour, 0, 1.5f);
+    // A whole-pixel width lets ImGui anti-alias with its line texture: two triangles a segment
+    // rather than six, which software OpenGL sets up one by one (3,000 segments a frame).
+    if (points.size() > 1) draw->AddPolyline(points.data(), int(points.size()), s.colour, 0, 2.0f);
   }
   char scale[64];
   std::snprintf(scale, sizeof scale, "%.3g %s", double(high), unit);

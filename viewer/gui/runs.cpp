@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
+#include <utility>
 #include <vector>
 
 namespace springlab::view {
@@ -44,6 +45,31 @@ int exit_code(const Session& session) {
       break;
   }
   return 0;
+}
+
+// Mean and p95 of each phase, ms: says where a slow frame's time goes.
+void phase_report(const std::vector<FramePhases>& phases, std::ostream& out) {
+  const std::pair<const char*, double FramePhases::*> names[] = {
+      {"panel", &FramePhases::panel},
+      {"stepping", &FramePhases::stepping},
+      {"scene", &FramePhases::scene},
+      {"imgui", &FramePhases::imgui},
+      {"display", &FramePhases::display}};
+  out << "phases, mean / p95 ms:";
+  for (const auto& [name, member] : names) {
+    std::vector<double> values;
+    values.reserve(phases.size());
+    for (const FramePhases& p : phases)
+      values.push_back(p.*member);
+    double sum = 0.0;
+    for (double v : values)
+      sum += v;
+    char text[64];
+    std::snprintf(text, sizeof text, " %s %.2f / %.2f", name, 1e3 * sum / double(values.size()),
+                  1e3 * percentile(values, 95));
+    out << text;
+  }
+  out << '\n';
 }
 
 void benchmark_report(const std::vector<double>& frames, long steps, double seconds,
@@ -89,6 +115,7 @@ void print_summary(const Session& session, std::ostream& out) {
 int run(App& app, const RunOptions& options, std::ostream& out) {
   if (!options.record.empty()) std::filesystem::create_directories(options.record);
   std::vector<double> frame_seconds;
+  std::vector<FramePhases> phases;
   long steps = 0;
   double stepping = 0.0;
   const auto start = std::chrono::steady_clock::now();
@@ -102,6 +129,7 @@ int run(App& app, const RunOptions& options, std::ostream& out) {
     last = now;
     steps += app.last_frame().steps;
     stepping += app.last_frame().stepping_seconds;
+    phases.push_back(app.last_frame().phases);
   }
   const double seconds = std::chrono::duration<double>(last - start).count();
   if (!options.screenshot.empty() && app.captured().getSize().x > 0) {
@@ -112,8 +140,10 @@ int run(App& app, const RunOptions& options, std::ostream& out) {
   if (!options.record.empty())
     out << "frames: " << frame_file(options.record, 0) << " ... "
         << frame_file(options.record, long(frame_seconds.size()) - 1) << '\n';
-  if (options.benchmark && !frame_seconds.empty())
+  if (options.benchmark && !frame_seconds.empty()) {
     benchmark_report(frame_seconds, steps, seconds, stepping, app.session().time(), out);
+    phase_report(phases, out);
+  }
   return exit_code(app.session());
 }
 

@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
+#include <iterator>
 #include <numbers>
 #include <vector>
 
@@ -99,6 +101,80 @@ Vec2 force_of(const Implementation& impl, const Spring& s, const Particles& p, i
          impl.damper_force(p.velocity.col(at), p.velocity.col(other), s.b);
 }
 
+// The strain colours, from fully compressed (index 0) through at rest (strain_steps) to fully
+// stretched (2 strain_steps): one look-up a spring instead of a blend of three channels.
+constexpr int strain_steps = 255;
+using StrainColours = std::array<std::uint32_t, 2 * strain_steps + 1>;
+
+const StrainColours& strain_colours(bool ghost) {
+  static const auto make = [](bool faint) {
+    StrainColours table;
+    for (int k = -strain_steps; k <= strain_steps; ++k) {
+      const double t = double(k) / strain_steps;
+      const sf::Color c = t >= 0 ? mix(colour::at_rest, colour::stretched, t)
+                                 : mix(colour::at_rest, colour::compressed, -t);
+      table[std::size_t(k + strain_steps)] = PixelCanvas::packed(faded(c, faint));
+    }
+    return table;
+  };
+  static const StrainColours solid = make(false), faint = make(true);
+  return ghost ? faint : solid;
+}
+
+// Large scenes: hairlines and square dots written into memory (pixel_canvas.hpp), each particle
+// taken to the screen once rather than once for every spring it ends.
+void draw_in_memory(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
+                    const DrawOptions& options) {
+  static std::vector<sf::Vector2f> screen;  // reused from frame to frame
+  static PixelCanvas canvas;
+  const Particles& particles = sim.particles();
+  const Vectors& r = particles.position;
+  const float radius = particle_radius(camera, sim.parameters().spacing);
+  const float reach = radius * 1.8f + 1.0f;  // the largest dot's half-width, and rounding
+  screen.resize(std::size_t(particles.size()));
+  const Viewport& view = camera.viewport();
+  sf::Vector2f low(view.left + view.width, view.top + view.height), high(view.left, view.top);
+  for (int i = 0; i < particles.size(); ++i) {
+    const sf::Vector2f at = screen[std::size_t(i)] = camera.to_screen(r.col(i));
+    if (!finite(at)) continue;
+    low = {std::min(low.x, at.x - reach), std::min(low.y, at.y - reach)};
+    high = {std::max(high.x, at.x + reach), std::max(high.y, at.y + reach)};
+  }
+  // Only what the scene covers of the viewport: springs join particles, so none reaches beyond.
+  low = {std::max(low.x, view.left), std::max(low.y, view.top)};
+  high = {std::min(high.x, view.left + view.width), std::min(high.y, view.top + view.height)};
+  if (!(low.x < high.x && low.y < high.y)) return;
+  canvas.begin({low.x, low.y, high.x - low.x, high.y - low.y});
+
+  std::array<bool, std::size(spring_families)> hidden{};
+  for (int family : options.hidden_families)
+    if (family >= 0 && family < int(hidden.size())) hidden[std::size_t(family)] = true;
+  const StrainColours& colours = strain_colours(options.ghost);
+  const double per_step = strain_steps / options.strain_scale;
+  for (const Spring& s : sim.scene().springs) {
+    if (hidden[std::size_t(s.family)]) continue;
+    const sf::Vector2f a = screen[std::size_t(s.p)], b = screen[std::size_t(s.q)];
+    if (!finite(a) || !finite(b)) continue;
+    const double strain = ((r.col(s.p) - r.col(s.q)).norm() - s.rest_length) / s.rest_length;
+    // Clamped first, so the cast is safe; adding ±0.5 rounds without a call into libm.
+    const double k = std::isnan(strain) ? 0.0
+                                        : std::clamp(strain * per_step, -double(strain_steps),
+                                                     double(strain_steps));
+    canvas.line(a, b, colours[std::size_t(int(k + (k >= 0 ? 0.5 : -0.5)) + strain_steps)]);
+  }
+  const std::uint32_t particle = PixelCanvas::packed(faded(colour::particle, options.ghost));
+  const std::uint32_t pinned = PixelCanvas::packed(faded(colour::pinned, options.ghost));
+  const std::uint32_t highlight = PixelCanvas::packed(colour::highlight);
+  for (int i = 0; i < particles.size(); ++i) {
+    const sf::Vector2f at = screen[std::size_t(i)];
+    if (!finite(at)) continue;
+    const bool is_pinned = particles.pinned[std::size_t(i)];
+    if (i == options.highlighted) canvas.square(at, radius * 1.8f, highlight);
+    canvas.square(at, radius * (is_pinned ? 1.3f : 1.0f), is_pinned ? pinned : particle);
+  }
+  canvas.draw(target);
+}
+
 }  // namespace
 
 float particle_radius(const Camera& camera, double spacing) {
@@ -109,26 +185,20 @@ float particle_radius(const Camera& camera, double spacing) {
 
 void draw_scene(sf::RenderTarget& target, const Simulation& sim, const Camera& camera,
                 const DrawOptions& options) {
+  if (sim.scene().springs.size() > thick_spring_limit)
+    return draw_in_memory(target, sim, camera, options);
   const Particles& particles = sim.particles();
   const Vectors& r = particles.position;
-  const auto& springs = sim.scene().springs;
-  // Reused from frame to frame: large scenes are drawn in memory (pixel_canvas.hpp).
-  static std::vector<sf::Vertex> lines, dots;
-  static PixelCanvas canvas;
-  const bool in_memory = springs.size() > thick_spring_limit;
+  static std::vector<sf::Vertex> lines, dots;  // reused from frame to frame
   lines.clear();
   dots.clear();
-  if (in_memory) canvas.begin(camera.viewport());
   const float width = std::clamp(particle_radius(camera, sim.parameters().spacing) / 3, 1.0f, 3.0f);
-  for (const Spring& s : springs) {
+  for (const Spring& s : sim.scene().springs) {
     if (options.hidden_families.count(int(s.family))) continue;
     const sf::Vector2f a = camera.to_screen(r.col(s.p)), b = camera.to_screen(r.col(s.q));
     if (!finite(a) || !finite(b)) continue;
-    const sf::Color c = faded(strain_colour(s, r, options.strain_scale), options.ghost);
-    if (in_memory)
-      canvas.line(a, b, c);
-    else
-      add_segment(lines, a, b, width, c);
+    add_segment(lines, a, b, width,
+                faded(strain_colour(s, r, options.strain_scale), options.ghost));
   }
   target.draw(lines.data(), lines.size(), sf::Triangles);
 
@@ -140,16 +210,10 @@ void draw_scene(sf::RenderTarget& target, const Simulation& sim, const Camera& c
     const bool pinned = particles.pinned[std::size_t(i)];
     const float size = i == options.highlighted ? 1.8f : pinned ? 1.3f : 1.0f;
     const sf::Color c = faded(pinned ? colour::pinned : colour::particle, options.ghost);
-    if (in_memory) {
-      if (i == options.highlighted) canvas.square(at, radius * size, colour::highlight);
-      canvas.square(at, radius * (pinned ? 1.3f : 1.0f), c);
-      continue;
-    }
     if (i == options.highlighted) add_dot(dots, at, radius * size, squares, colour::highlight);
     add_dot(dots, at, radius * (pinned ? 1.3f : 1.0f), squares || pinned, c);
   }
   target.draw(dots.data(), dots.size(), sf::Triangles);
-  if (in_memory) canvas.draw(target);
 }
 
 Vec2 spring_force_on(const Simulation& sim, int particle) {
