@@ -7,9 +7,12 @@
 #include "springlab/this_implementation.hpp"
 #include "springlab/wind.hpp"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <utility>
+#include <vector>
 
 using namespace springlab;
 using namespace springlab::testing;
@@ -92,6 +95,26 @@ TEST_CASE("Wind field: the speed stays within the gustiness, gusts travel with t
   CHECK(fastest - slowest > p.speed * p.gustiness);  // it really gusts
   p.gustiness = 0.0;
   CHECK_THAT(WindField(p).velocity(7.0, Vec2(2.0, 1.0)).norm(), WithinRel(6.0, 1e-12));
+}
+
+TEST_CASE("Wind field: passes remember answers only while t and r are unchanged", "[core][wind]") {
+  const WindField fresh{WindParameters{}};
+  const WindField remembering{WindParameters{}};
+  const Vec2 a(1.0, 2.0), b(-3.0, 0.5), moved(1.25, 2.0);  // moved along the wind
+  // Four passes over two points: the same, a moved point, a later time, the same again.
+  const std::vector<std::pair<double, std::array<Vec2, 2>>> passes{
+      {0.3, {a, b}}, {0.3, {moved, b}}, {0.7, {moved, b}}, {0.7, {moved, b}}};
+  for (const auto& [t, points] : passes) {
+    remembering.begin_pass();
+    for (const Vec2& r : points) {
+      CAPTURE(t, r);
+      const Vec2 w = remembering.velocity(t, r);
+      CHECK(w == fresh.velocity(t, r));  // bit for bit
+    }
+  }
+  // The moved point and the later time really change the wind.
+  CHECK(fresh.velocity(0.3, a) != fresh.velocity(0.3, moved));
+  CHECK(fresh.velocity(0.3, moved) != fresh.velocity(0.7, moved));
 }
 
 TEST_CASE("Push: the applied force acts on the chosen particles while t < push_duration",

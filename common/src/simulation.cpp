@@ -69,7 +69,10 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
   if (p.gravity.enabled) impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
   // The wind is sampled at the start of the step: its gusts change over seconds, not steps.
-  if (wind_) impl_->add_wind(*wind_, time(), r, v, force_);
+  if (wind_) {
+    wind_->begin_pass();
+    impl_->add_wind(*wind_, time(), r, v, force_);
+  }
   if (time() < p.push_duration)
     for (int i : pushed_)
       force_.col(i) += p.push;

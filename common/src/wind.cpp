@@ -27,6 +27,15 @@ WindField::WindField(const WindParameters& p)
 }
 
 Vec2 WindField::velocity(double t, const Vec2& r) const {
+  if (!remembering_) return compute(t, r);
+  const std::size_t i = cursor_++;
+  if (i == answers_.size()) answers_.push_back({t, r, compute(t, r)});
+  Answer& answer = answers_[i];
+  if (answer.t != t || answer.r != r) answer = {t, r, compute(t, r)};
+  return answer.w;
+}
+
+Vec2 WindField::compute(double t, const Vec2& r) const {
   // A gust reaches a point downwind later: it travels with the mean flow.
   const double s = speed_ > 0.0 ? t - r.dot(direction_) / speed_ : t;
   double gust = 0.0;

@@ -7,6 +7,8 @@
 #include "springlab/types.hpp"
 
 #include <array>
+#include <cstddef>
+#include <vector>
 
 namespace springlab {
 
@@ -21,13 +23,28 @@ class WindField {
 
   double drag() const { return drag_; }  ///< c, N·s/m
 
+  /// Starts a pass over the particles, asked in the same order every time (Simulation calls it
+  /// before each add_wind). All evaluations of a(r, v) within a step ask for the wind at the step's
+  /// start time, and Verlet's velocity iterations at the same positions too: from the first call
+  /// of begin_pass on, velocity() remembers the last pass's answers in order and returns them when
+  /// t and r are the same, bit for bit what it would compute, without the three sines.
+  void begin_pass() const { cursor_ = 0, remembering_ = true; }
+
  private:
   struct Sine {
     double amplitude, angular_frequency, phase;
   };
+  struct Answer {
+    double t;
+    Vec2 r, w;
+  };
+  Vec2 compute(double t, const Vec2& r) const;
   Vec2 direction_;
   double speed_, drag_, gustiness_;
   std::array<Sine, 3> gusts_;
+  mutable std::vector<Answer> answers_;  // the last pass's, in the order asked
+  mutable std::size_t cursor_ = 0;
+  mutable bool remembering_ = false;
 };
 
 }  // namespace springlab
