@@ -57,7 +57,10 @@ struct ConjugateGradientStorage {
 /// multiply(x, product) setting product = A x, by conjugate gradients with the diagonal
 /// preconditioner inverse_diagonal (1/A_ii; 0 for a coordinate held at zero, where b and
 /// every product must be 0 too). The same iteration as Eigen's ConjugateGradient: it stops when
-/// |b − A x| < tolerance |b| or after max_iterations, starting from x as given.
+/// |b − A x| < tolerance |b| or after max_iterations, starting from x as given. (Eigen's solver
+/// runs matrix-free only through a wrapper type that specialises Eigen::internal's traits and
+/// product and a preconditioner class of our own, on flat vectors: more code, reaching into
+/// Eigen's internals, than these few lines on the 2×n vectors the integrators hold.)
 /// b, x: one column per particle. False when it has not converged.
 template <class Multiply>
 bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, const Vectors& b,
