@@ -4,8 +4,10 @@
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 namespace springlab::tradeoff {
 
@@ -206,6 +208,29 @@ double evaluation_time(const Scenario& s) {
     best = std::min(best, (now() - start) / batch);
   }
   return best;
+}
+
+double step_cost(const Scenario& s, const std::string& method) {
+  SceneParameters p = s.params;
+  set_parameter(p, "integrator", method);
+  Simulation sim(p, lab_implementation());
+  sim.advance(20);  // past the start-up step, CG warm-started
+  const int batch = std::max(5, 20000 / (p.rows * p.cols));
+  std::vector<double> ratios;
+  for (int round = 0; round < 7; ++round) {
+    // A batch of steps, then as many evaluations at the state reached: measured moments apart,
+    // so a busy machine slows both alike and their ratio holds.
+    double start = now();
+    sim.advance(batch);
+    const double step = now() - start;
+    const Vectors r = sim.particles().position, v = sim.particles().velocity;
+    start = now();
+    for (int i = 0; i < batch; ++i)
+      sim.acceleration(r, v);
+    ratios.push_back(step / (now() - start));
+  }
+  std::nth_element(ratios.begin(), ratios.begin() + 3, ratios.end());
+  return ratios[3];
 }
 
 }  // namespace springlab::tradeoff

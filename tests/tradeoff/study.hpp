@@ -7,6 +7,7 @@
 #include "springlab/parameters.hpp"
 #include "springlab/types.hpp"
 
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -135,9 +136,21 @@ struct Results {
   std::vector<Run> runs;
   std::vector<StepLimit> critical;
   std::vector<Order> orders;
-  std::vector<double> evaluation_seconds;  ///< per scenario
+  std::vector<double> evaluation_seconds;      ///< per scenario
+  double implicit_fabric_cost = std::nan("");  ///< step_cost of implicit-euler on the fabric
   double total_seconds = 0.0;
 };
+
+/// What one step of a run cost, in units of one force evaluation's time on its scene: the wall
+/// time a step over evaluation_time. Counts the integrator's own work (an implicit solve) too.
+double cost_in_evaluations(const Results& r, const Run& run);
+
+/// An implicit step at the lab's values may cost at most this many force evaluations (issue 5).
+inline constexpr double implicit_step_budget = 20.0;
+
+/// What a step of `method` costs on scene s at its lab step, in force evaluations' time: the
+/// median over 7 rounds of a batch of steps timed against as many evaluations right after.
+double step_cost(const Scenario& s, const std::string& method);
 
 /// The --quick checks; each failure as one line (expected, measured, what it means).
 std::vector<std::string> check(const Results& r);
