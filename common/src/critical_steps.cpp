@@ -89,13 +89,15 @@ double spectral_radius(const Eigen::MatrixXd& s) {
   return Eigen::EigenSolver<Eigen::MatrixXd>(s, false).eigenvalues().cwiseAbs().maxCoeff();
 }
 
-// RK4's growth factor R(z) and the largest t with |R(t·direction)| ≤ 1 on all of [0, t]: a scan
-// (the region reaches |z| < 3.1) and a bisection of the first crossing.
+// RK4's growth factor |R(z)| per step on a mode with hλ = z.
+double rk4_growth(std::complex<double> z) {
+  return std::abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))));
+}
+
+// The largest t with |R(t·direction)| ≤ 1 on all of [0, t]: a scan (the region reaches
+// |z| < 3.1) and a bisection of the first crossing.
 double rk4_reach(std::complex<double> direction) {
-  const auto growth = [&](double t) {
-    const std::complex<double> z = t * direction;
-    return std::abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))));
-  };
+  const auto growth = [&](double t) { return rk4_growth(t * direction); };
   constexpr double scan = 1.0 / 256;
   double t = 0.0;
   while (t < 4.0 && growth(t + scan) <= 1.0 + 1e-12)
@@ -105,16 +107,6 @@ double rk4_reach(std::complex<double> direction) {
   for (int i = 0; i < 60; ++i)
     (growth(0.5 * (lo + hi)) <= 1.0 + 1e-12 ? lo : hi) = 0.5 * (lo + hi);
   return lo;
-}
-
-double rk4_critical_step(const LinearModel& model) {
-  const Eigen::VectorXcd lambda = system_eigenvalues(model);
-  const double largest = lambda.cwiseAbs().maxCoeff();
-  double limit = infinity;
-  for (const auto& l : lambda)
-    if (std::abs(l) > rigid_tolerance * largest)
-      limit = std::min(limit, rk4_reach(l / std::abs(l)) / std::abs(l));
-  return limit;
 }
 
 // Symplectic Euler per mode of x'' = -ω² x - c x': stable for h ≤ 4/(c + √(c² + 4ω²)) (the
@@ -184,7 +176,9 @@ CriticalStep critical_step_of(const LinearModel& model, std::string_view integra
     return {explicit_euler_critical_step(model), LimitSource::exact_formula};
   if (integrator == "verlet" || integrator == "velocity-verlet")
     return {verlet_critical_step(model), LimitSource::exact_formula};
-  if (integrator == "rk4") return {rk4_critical_step(model), LimitSource::exact_formula};
+  if (integrator == "rk4")
+    return {polynomial_critical_step(deforming_eigenvalues(model), "rk4"),
+            LimitSource::exact_formula};
   if (integrator == "implicit-euler") return {infinity, LimitSource::no_limit};
   if (integrator == "symplectic-euler") {
     if (free_particles(model) <= bisection_particles_max)
@@ -192,6 +186,35 @@ CriticalStep critical_step_of(const LinearModel& model, std::string_view integra
     return {symplectic_euler_modal_estimate(model), LimitSource::modal_estimate};
   }
   throw InvalidParameter("integrator", "\"" + std::string(integrator) + "\"", integrator_choices());
+}
+
+std::vector<std::complex<double>> deforming_eigenvalues(const LinearModel& model) {
+  const Eigen::VectorXcd all = system_eigenvalues(model);
+  std::vector<std::complex<double>> lambda;
+  if (all.size() == 0) return lambda;
+  const double largest = all.cwiseAbs().maxCoeff();
+  for (const auto& l : all)
+    if (std::abs(l) > rigid_tolerance * largest) lambda.push_back(l);
+  return lambda;
+}
+
+double polynomial_critical_step(const std::vector<std::complex<double>>& lambda,
+                                std::string_view integrator) {
+  const bool rk4 = integrator == "rk4";
+  double limit = infinity;
+  for (const auto& l : lambda)  // equation (1.6) per mode, or RK4's reach along λ
+    limit = std::min(limit, rk4 ? rk4_reach(l / std::abs(l)) / std::abs(l)
+                                : std::max(0.0, -2.0 * l.real() / std::norm(l)));
+  return limit;
+}
+
+double polynomial_growth_factor(const std::vector<std::complex<double>>& lambda,
+                                std::string_view integrator, double h) {
+  const bool rk4 = integrator == "rk4";
+  double growth = 0.0;
+  for (const auto& l : lambda)
+    growth = std::max(growth, rk4 ? rk4_growth(h * l) : std::abs(1.0 + h * l));
+  return growth;
 }
 
 double critical_step(const LinearModel& model, std::string_view integrator) {

@@ -73,24 +73,12 @@ Eigen::VectorXcd system_eigenvalues(const LinearModel& model) {
 
 double explicit_euler_growth_factor(const LinearModel& model, double h) {
   if (model.mass.size() == 0) return 0.0;
-  const Eigen::VectorXcd lambda = system_eigenvalues(model);
-  const double largest = lambda.cwiseAbs().maxCoeff();
-  double growth = 0.0;
-  for (const auto& l : lambda)
-    if (std::abs(l) > rigid_tolerance * largest) growth = std::max(growth, std::abs(1.0 + h * l));
-  return growth;
+  return polynomial_growth_factor(deforming_eigenvalues(model), "explicit-euler", h);
 }
 
 double explicit_euler_critical_step(const LinearModel& model) {
   if (model.mass.size() == 0) return std::numeric_limits<double>::infinity();
-  const Eigen::VectorXcd lambda = system_eigenvalues(model);
-  const double largest = lambda.cwiseAbs().maxCoeff();
-  double limit = std::numeric_limits<double>::infinity();
-  for (const auto& l : lambda) {
-    if (std::abs(l) <= rigid_tolerance * largest) continue;
-    limit = std::min(limit, std::max(0.0, -2.0 * l.real() / std::norm(l)));
-  }
-  return limit;
+  return polynomial_critical_step(deforming_eigenvalues(model), "explicit-euler");
 }
 
 double verlet_critical_step(const LinearModel& model) {

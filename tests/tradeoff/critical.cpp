@@ -182,48 +182,15 @@ bool is_linear_scene(const Scenario& s) {
   return !s.params.gravity.enabled;
 }
 
-// RK4 multiplies mode λ by R(hλ) each step; reach is the largest t with |R(t·direction)| ≤ 1
-// on [0, t]. The same scan and bisection as common/src/critical_steps.cpp, which keeps them
-// private: calling critical_step_of for RK4 and explicit Euler would repeat the eigen-solve.
-double rk4_growth(std::complex<double> z) {
-  return std::abs(1.0 + z * (1.0 + z * (0.5 + z * (1.0 / 6.0 + z / 24.0))));
-}
-
-double rk4_reach(std::complex<double> direction) {
-  constexpr double scan = 1.0 / 256;
-  double t = 0.0;
-  while (t < 4.0 && rk4_growth((t + scan) * direction) <= 1.0 + 1e-12)
-    t += scan;
-  if (t >= 4.0) return std::numeric_limits<double>::infinity();
-  double lo = t, hi = t + scan;
-  for (int i = 0; i < 60; ++i)
-    (rk4_growth(0.5 * (lo + hi) * direction) <= 1.0 + 1e-12 ? lo : hi) = 0.5 * (lo + hi);
-  return lo;
-}
-
-// The system eigenvalues of a model without the rigid ones: explicit Euler's and RK4's step
-// matrices are polynomials in hA, so their limits and growth factors follow from λ alone.
+// The system eigenvalues of a model without the rigid ones, solved once: explicit Euler's and
+// RK4's limits and growth factors follow from them alone (stability.hpp).
 struct Spectrum {
   std::vector<std::complex<double>> lambda;
 
-  explicit Spectrum(const LinearModel& model) {
-    const Eigen::VectorXcd all = system_eigenvalues(model);
-    const double largest = all.cwiseAbs().maxCoeff();
-    for (const auto& l : all)
-      if (std::abs(l) > rigid_tolerance * largest) lambda.push_back(l);
-  }
-  double limit(const std::string& method) const {  // equation (1.6) per mode, or RK4's reach
-    double h = std::numeric_limits<double>::infinity();
-    for (const auto& l : lambda)
-      h = std::min(h, method == "rk4" ? rk4_reach(l / std::abs(l)) / std::abs(l)
-                                      : -2.0 * l.real() / std::norm(l));
-    return h;
-  }
+  explicit Spectrum(const LinearModel& model) : lambda(deforming_eigenvalues(model)) {}
+  double limit(const std::string& method) const { return polynomial_critical_step(lambda, method); }
   double growth(const std::string& method, double h) const {  // per step, the largest
-    double g = 0.0;
-    for (const auto& l : lambda)
-      g = std::max(g, method == "rk4" ? rk4_growth(h * l) : std::abs(1.0 + h * l));
-    return g;
+    return polynomial_growth_factor(lambda, method, h);
   }
 };
 

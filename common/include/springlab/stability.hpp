@@ -10,6 +10,7 @@
 #include "springlab/types.hpp"
 
 #include <Eigen/Core>
+#include <complex>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,6 +39,20 @@ Eigen::MatrixXd system_matrix(const LinearModel& model);
 
 /// The eigenvalues λ of system_matrix(model), 1/s.
 Eigen::VectorXcd system_eigenvalues(const LinearModel& model);
+
+/// The eigenvalues of system_matrix(model) that deform the scene: rigid motions (|λ| at most
+/// rigid_tolerance of the largest) left out, 1/s.
+std::vector<std::complex<double>> deforming_eigenvalues(const LinearModel& model);
+
+/// Explicit Euler's and RK4's step matrices are polynomials in hA, so their limit and growth
+/// follow from the eigenvalues alone, and one eigen-solve serves both. `integrator` is
+/// "explicit-euler" (|1 + hλ|) or "rk4" (|R(hλ)|, R(z) = 1 + z + z²/2 + z³/6 + z⁴/24).
+/// The largest h stable on every λ, s:
+double polynomial_critical_step(const std::vector<std::complex<double>>& lambda,
+                                std::string_view integrator);
+/// The largest growth factor per step at step h over the λ:
+double polynomial_growth_factor(const std::vector<std::complex<double>>& lambda,
+                                std::string_view integrator, double h);
 
 /// Explicit Euler multiplies mode λ by 1 + hλ each step: the largest |1 + hλ| at step h over
 /// the modes that deform the scene (λ ≠ 0; free translations stay as they are).
