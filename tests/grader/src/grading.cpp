@@ -1,0 +1,454 @@
+#include "grading.hpp"
+
+#include "checks.hpp"
+#include "verdict.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+
+namespace springlab::grader {
+namespace {
+
+// The compiler and linker on submission code: generous, but a template bomb or an #include of
+// /dev/zero still ends.
+Limits build_limits() {
+  Limits limits;
+  limits.wall_seconds = 120;
+  limits.cpu_seconds = 120;
+  limits.address_space_mb = 4096;
+  limits.file_size_mb = 512;
+  return limits;
+}
+
+// The compiler's messages, without the lines that only repeat where the kit compiled them.
+std::string first_lines(const std::string& text, std::size_t count) {
+  std::istringstream lines(text);
+  std::string line, result;
+  std::size_t kept = 0;
+  while (std::getline(lines, line) && kept < count) {
+    result += line + '\n';
+    ++kept;
+  }
+  if (std::getline(lines, line)) result += "...\n";
+  return result;
+}
+
+// Paths in the compiler's messages as the student knows them: tasks/task1_.../file.cpp.
+std::string student_paths(std::string text, const fs::path& copy) {
+  const std::string prefix = copy.parent_path().parent_path().string() + "/";
+  for (auto at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at))
+    text.erase(at, prefix.size());
+  return text;
+}
+
+std::string kit_signature(const Kit& kit, const std::vector<TestInfo>& tests) {
+  std::ostringstream s;
+  const auto stamp = [&](const fs::path& path) {
+    std::error_code error;
+    s << path.string() << ' ' << fs::file_size(path, error) << ' '
+      << fs::last_write_time(path, error).time_since_epoch().count() << '\n';
+  };
+  stamp(kit.plain.harness);
+  stamp(kit.sanitized.harness);
+  for (const auto& [name, object] : kit.reference_objects)
+    stamp(object);
+  for (const auto& [task, table] : kit.tables)
+    stamp(table);
+  for (const fs::path& path : kit.link_always)
+    stamp(path);
+  for (const TestInfo& test : tests)
+    s << test.name << '\n';
+  return s.str();
+}
+
+}  // namespace
+
+double TaskResult::points() const {
+  double sum = 0.0;
+  for (const TestResult& t : tests)
+    sum += t.passed ? t.test->points : 0.0;
+  return sum;
+}
+
+double TaskResult::max_points() const {
+  double sum = 0.0;
+  for (const TestResult& t : tests)
+    sum += t.test->points;
+  return sum;
+}
+
+int TaskResult::passed() const {
+  return int(std::count_if(tests.begin(), tests.end(), [](const TestResult& t) { return t.passed; }));
+}
+
+double SubmissionResult::points() const {
+  double sum = 0.0;
+  for (const auto& [n, task] : tasks)
+    sum += task.points();
+  return sum;
+}
+
+double SubmissionResult::max_points() const {
+  double sum = 0.0;
+  for (const auto& [n, task] : tasks)
+    sum += task.max_points();
+  return sum;
+}
+
+// One task's files as one or more submissions hold them, from copy to verdicts.
+struct Grader::TaskBuild {
+  int task = 0;
+  fs::path copy;    // the private copy of the task's files
+  fs::path folder;  // its objects and libraries
+  std::vector<std::string> sources;  // the kit's files of the task, compiled
+  TaskResult result;
+  std::vector<int> passed_plain;  // tests waiting for the sanitized library
+  bool sanitized_ready = false;
+  std::string sanitized_problem;  // set when the sanitized build failed
+  int tests_open = 0;
+  std::vector<std::function<void()>> on_finish;
+
+  fs::path object(const std::string& source, const Variant& v) const {
+    return folder / (v.name + "-" + fs::path(source).stem().string() + ".o");
+  }
+  fs::path library(const Variant& v) const { return folder / (v.name + ".so"); }
+  void finish() {
+    for (auto& f : on_finish)
+      f();
+    on_finish.clear();
+  }
+};
+
+Grader::Grader(const Kit& kit, const std::vector<TestInfo>& tests, Settings settings)
+    : kit_(kit), tests_(tests), settings_(std::move(settings)) {}
+
+std::string Grader::time_limit_text() const {
+  std::ostringstream text;
+  text << settings_.time_factor << " times the reference's time, at least "
+       << settings_.time_floor << " s";
+  return text.str();
+}
+
+Limits Grader::test_limits(const TestInfo& test, const Variant& variant) const {
+  Limits limits;
+  double reference = settings_.time_floor;
+  if (const auto v = calibration_.find(variant.name); v != calibration_.end())
+    if (const auto t = v->second.find(test.name); t != v->second.end()) reference = t->second;
+  limits.wall_seconds = std::max(settings_.time_floor, settings_.time_factor * reference);
+  limits.cpu_seconds = limits.wall_seconds;
+  // The sanitizers reserve terabytes of address space: their memory is watched instead.
+  const bool sanitized = &variant == &kit_.sanitized;
+  limits.address_space_mb = sanitized ? 0 : settings_.memory_mb;
+  limits.resident_mb = sanitized ? settings_.memory_mb : 0;
+  limits.file_size_mb = 0;
+  limits.output_kept = settings_.output_kept;
+  limits.output_limit = settings_.output_limit;
+  return limits;
+}
+
+// The stages of a task build, each started by the end of the one before: compile plain, check
+// what the code includes and names, link; then every test plain, while the sanitized library is
+// built; then, for each test that passed, the same test sanitized.
+class Grader::Pipeline {
+ public:
+  Pipeline(const Grader& grader, ProcessPool& pool, bool generous)
+      : g_(grader), kit_(grader.kit_), pool_(pool), generous_(generous) {
+    run_folder_ = g_.settings_.work / "run";
+    fs::create_directories(run_folder_);
+    limits_text_.time = generous ? "60 s while measuring the reference" : g_.time_limit_text();
+  }
+
+  void start(const std::shared_ptr<TaskBuild>& b) {
+    for (const TestInfo& test : g_.tests_)
+      if (test.task == b->task) {
+        TestResult result;
+        result.test = &test;
+        b->result.tests.push_back(result);
+      }
+    b->tests_open = int(b->result.tests.size());
+    fs::create_directories(b->folder);
+    compile(b, kit_.plain, [this, b](bool ok, const std::string& messages) {
+      if (!ok) return fail_all(b, "does not compile:\n" + messages);
+      b->result.warnings = messages;
+      check(b);
+    });
+  }
+
+ private:
+  using Then = std::function<void(bool ok, const std::string& messages)>;
+  const Grader& g_;
+  const Kit& kit_;
+  ProcessPool& pool_;
+  bool generous_;
+  fs::path run_folder_;
+  LimitsText limits_text_;
+
+  void compile(const std::shared_ptr<TaskBuild>& b, const Variant& v, Then then) {
+    struct Stage {
+      std::size_t open = 0;
+      bool ok = true;
+      std::string messages;
+    };
+    auto stage = std::make_shared<Stage>();
+    stage->open = b->sources.size();
+    for (const std::string& source : b->sources) {
+      const fs::path object = b->object(source, v);
+      Command c;
+      c.argv = v.compile;
+      for (const std::string& arg : {std::string("-MD"), std::string("-MF"),
+                                     object.string() + ".d", std::string("-c"),
+                                     (b->copy / source).string(), std::string("-o"),
+                                     object.string()})
+        c.argv.push_back(arg);
+      c.env = plain_environment();
+      c.directory = b->copy.string();
+      c.limits = build_limits();
+      pool_.add(std::move(c), [b, stage, then](Outcome o) {
+        const bool ok = o.exited && o.exit_code == 0;
+        std::string messages = student_paths(o.output, b->copy);
+        if (o.stopped != Stop::none) messages += "(the compiler was stopped: it ran too long)\n";
+        if (!o.start_error.empty()) messages += o.start_error + "\n";
+        stage->ok = stage->ok && ok;
+        stage->messages += messages;
+        if (--stage->open == 0) then(stage->ok, first_lines(stage->messages, 60));
+      });
+    }
+  }
+
+  // What the code included (from the dependency files) and what its objects name (from nm).
+  void check(const std::shared_ptr<TaskBuild>& b) {
+    for (const std::string& source : b->sources)
+      for (const fs::path& file : read_dependencies(b->object(source, kit_.plain).string() + ".d")) {
+        const std::string problem = include_problem(file, b->copy, kit_.pch, kit_);
+        if (!problem.empty()) return fail_all(b, "not graded: " + source + ": " + problem);
+      }
+    Command c;
+    c.argv = {kit_.nm.string(), "-P", "-A"};
+    for (const std::string& source : b->sources)
+      c.argv.push_back(b->object(source, kit_.plain).string());
+    c.env = plain_environment();
+    c.directory = b->folder.string();
+    c.limits = build_limits();
+    c.limits.output_kept = c.limits.output_limit;
+    pool_.add(std::move(c), [this, b](Outcome o) {
+      const std::vector<std::string> problems = symbol_problems(o.output);
+      if (!problems.empty()) {
+        std::string text = "not graded:";
+        for (const std::string& p : problems)
+          text += "\n" + p;
+        return fail_all(b, text);
+      }
+      link(b, kit_.plain, [this, b](bool ok, const std::string& messages) {
+        if (!ok) return fail_all(b, "does not link:\n" + messages);
+        for (int i = 0; i < int(b->result.tests.size()); ++i)
+          run_plain(b, i);
+        build_sanitized(b);
+      });
+    });
+  }
+
+  void link(const std::shared_ptr<TaskBuild>& b, const Variant& v, Then then) {
+    Command c;
+    c.argv = v.link;
+    c.argv.push_back("-o");
+    c.argv.push_back(b->library(v).string());
+    // The submission's objects first, so that their copies of inline functions are the ones kept.
+    for (const std::string& source : b->sources)
+      c.argv.push_back(b->object(source, v).string());
+    for (const auto& [task, files] : kit_.task_files)
+      if (task != b->task)
+        for (const std::string& file : files)
+          c.argv.push_back(kit_.reference_objects.at(file).string());
+    c.argv.push_back(kit_.tables.at(b->task).string());
+    for (const fs::path& path : kit_.link_always)
+      c.argv.push_back(path.string());
+    c.env = plain_environment();
+    c.directory = b->folder.string();
+    c.limits = build_limits();
+    pool_.add(std::move(c), [b, then](Outcome o) {
+      then(o.exited && o.exit_code == 0, first_lines(student_paths(o.output, b->copy), 30));
+    });
+  }
+
+  void build_sanitized(const std::shared_ptr<TaskBuild>& b) {
+    compile(b, kit_.sanitized, [this, b](bool ok, const std::string& messages) {
+      if (!ok) return sanitized_ready(b, "it does not compile:\n" + messages);
+      link(b, kit_.sanitized, [this, b](bool linked, const std::string& link_messages) {
+        sanitized_ready(b, linked ? "" : "it does not link:\n" + link_messages);
+      });
+    });
+  }
+
+  void sanitized_ready(const std::shared_ptr<TaskBuild>& b, const std::string& problem) {
+    b->sanitized_problem = problem;
+    b->sanitized_ready = true;
+    for (const int index : b->passed_plain)
+      run_sanitized(b, index);
+    b->passed_plain.clear();
+  }
+
+  Command test_command(const TestInfo& test, const Variant& v, const TaskBuild& b) const {
+    Command c;
+    c.argv = {v.harness.string(), "--run", test.name, b.library(v).string()};
+    c.env = plain_environment();
+    c.env.insert(c.env.end(), v.env.begin(), v.env.end());
+    c.directory = run_folder_.string();
+    c.secret = new_secret();
+    c.limits = g_.test_limits(test, v);
+    if (generous_) c.limits.wall_seconds = c.limits.cpu_seconds = 60;
+    return c;
+  }
+
+  void run_plain(const std::shared_ptr<TaskBuild>& b, int index) {
+    Command c = test_command(*b->result.tests[std::size_t(index)].test, kit_.plain, *b);
+    const std::string secret = c.secret;
+    const Limits limits = c.limits;
+    pool_.add(std::move(c), [this, b, index, secret, limits](Outcome o) {
+      TestResult& t = b->result.tests[std::size_t(index)];
+      const RunVerdict v = judge(o, secret, limits, limits_text_);
+      t.passed = v.passed;
+      t.message = v.message;
+      t.printed = o.output;
+      t.printed_bytes = o.output_bytes;
+      t.seconds = o.wall_seconds;
+      if (!t.passed) return settle(b);
+      if (b->sanitized_ready) return run_sanitized(b, index);
+      b->passed_plain.push_back(index);
+    });
+  }
+
+  void run_sanitized(const std::shared_ptr<TaskBuild>& b, int index) {
+    TestResult& plain = b->result.tests[std::size_t(index)];
+    if (!b->sanitized_problem.empty()) {
+      plain.passed = false;
+      plain.message = "passes, but the build with the sanitizers failed: " + b->sanitized_problem;
+      return settle(b);
+    }
+    Command c = test_command(*plain.test, kit_.sanitized, *b);
+    const std::string secret = c.secret;
+    const Limits limits = c.limits;
+    pool_.add(std::move(c), [this, b, index, secret, limits](Outcome o) {
+      TestResult& t = b->result.tests[std::size_t(index)];
+      t.sanitized_seconds = o.wall_seconds;
+      const RunVerdict v = judge(o, secret, limits, limits_text_);
+      if (!v.passed) {
+        t.passed = false;
+        t.message = "passes, but not with the sanitizers, which check every memory access: " +
+                    v.message;
+        t.printed = o.output;
+        t.printed_bytes = o.output_bytes;
+      }
+      settle(b);
+    });
+  }
+
+  void settle(const std::shared_ptr<TaskBuild>& b) {
+    if (--b->tests_open == 0) b->finish();
+  }
+
+  void fail_all(const std::shared_ptr<TaskBuild>& b, const std::string& problem) {
+    b->result.problem = problem;
+    for (TestResult& t : b->result.tests) {
+      t.passed = false;
+      t.message = problem.substr(0, problem.find('\n'));
+    }
+    b->finish();
+  }
+};
+
+std::vector<SubmissionResult> Grader::run(
+    const std::vector<Submission>& submissions, bool generous,
+    const std::function<void(const SubmissionResult&, int)>& task_done,
+    const std::function<void(const SubmissionResult&)>& submission_done) {
+  ProcessPool pool(settings_.jobs);
+  Pipeline pipeline(*this, pool, generous);
+  std::vector<SubmissionResult> results(submissions.size());
+  std::vector<int> tasks_open(submissions.size(), int(settings_.tasks.size()));
+  std::map<std::pair<int, std::string>, std::shared_ptr<TaskBuild>> builds;
+
+  for (std::size_t i = 0; i < submissions.size(); ++i) {
+    results[i].submission = submissions[i];
+    const fs::path copies = settings_.work / "submissions" / (std::to_string(i + 1) + "-" +
+                                                             submissions[i].name);
+    for (const int task : settings_.tasks) {
+      TaskCopy copy = copy_task(submissions[i], task, kit_, copies);
+      std::shared_ptr<TaskBuild>& b = builds[{task, copy.contents}];
+      const bool is_new = !b;
+      if (is_new) {
+        b = std::make_shared<TaskBuild>();
+        b->task = task;
+        b->copy = copy.folder;
+        b->folder = settings_.work / "builds" / std::to_string(builds.size());
+        for (const std::string& file : kit_.task_files.at(task))
+          b->sources.push_back(fs::path(file).filename().string());
+      }
+      b->on_finish.push_back([&, i, task, b, notes = copy.notes] {
+        TaskResult& r = results[i].tasks[task];
+        r = b->result;
+        r.task = task;
+        r.notes = notes;
+        task_done(results[i], task);
+        if (--tasks_open[i] == 0) submission_done(results[i]);
+      });
+      if (is_new) pipeline.start(b);
+    }
+  }
+  pool.run();
+  return results;
+}
+
+std::vector<SubmissionResult> Grader::grade(
+    const std::vector<Submission>& submissions,
+    const std::function<void(const SubmissionResult&, int task)>& task_done,
+    const std::function<void(const SubmissionResult&)>& submission_done) {
+  return run(submissions, false, task_done, submission_done);
+}
+
+void Grader::calibrate(const fs::path& cache) {
+  const std::string signature = kit_signature(kit_, tests_);
+  {
+    std::ifstream in(cache);
+    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const auto split = text.find("---\n");
+    if (split != std::string::npos && text.substr(0, split) == signature) {
+      std::istringstream lines(text.substr(split + 4));
+      std::string variant, line;
+      double seconds = 0;
+      while (lines >> variant >> seconds && std::getline(lines, line))
+        calibration_[variant][line.substr(1)] = seconds;
+      return;
+    }
+  }
+  const Settings saved = settings_;
+  settings_.tasks = {1, 2, 3, 4, 5};
+  settings_.work = saved.work / "reference";
+  Submission reference = find_submission(kit_.solutions, kit_);
+  reference.name = "reference";
+  // Both runs of every test, however the plain one ends: each variant needs its time.
+  const std::vector<SubmissionResult> results = run({reference}, true, [](auto&, int) {}, [](auto&) {});
+  settings_ = saved;
+  std::string failures;
+  for (const auto& [task, result] : results.front().tasks)
+    for (const TestResult& t : result.tests)
+      if (!t.passed)
+        failures += "\n  task " + std::to_string(task) + ": " + t.test->name + ": " +
+                    (result.problem.empty() ? t.message : result.problem);
+      else {
+        calibration_["plain"][t.test->name] = t.seconds;
+        calibration_["sanitized"][t.test->name] = t.sanitized_seconds;
+      }
+  if (!failures.empty())
+    throw std::runtime_error("the kit's own solutions fail tests, so nothing can be graded "
+                             "fairly (rebuild the kit; if it persists, the kit is broken):" +
+                             failures);
+  std::ofstream out(cache);
+  out << signature << "---\n";
+  for (const auto& [name, variant] : calibration_)
+    for (const auto& [test, seconds] : variant)
+      out << name << ' ' << seconds << ' ' << test << '\n';
+}
+
+}  // namespace springlab::grader

@@ -1,0 +1,94 @@
+// Grading many submissions at once: each task of each submission is copied, compiled (its own
+// files only: the kit and the reference objects are built once), checked and linked into a
+// library; then every test of the task runs as a process of its own under limits, first plain
+// and, when it passes, again with the sanitizers. Task copies with the same files are graded once.
+#pragma once
+
+#include "kit.hpp"
+#include "points.hpp"
+#include "process.hpp"
+#include "submission.hpp"
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace springlab::grader {
+
+struct Settings {
+  fs::path work;              ///< private copies, objects and libraries (emptied first)
+  int jobs = 2;               ///< processes at once
+  double time_factor = 10.0;  ///< a test may take this many times the reference's time...
+  double time_floor = 2.0;    ///< ...but never less than this, s
+  long memory_mb = 1024;      ///< MB of memory per test process
+  std::size_t output_kept = 64 * 1024;  ///< bytes of a test's output kept
+  std::size_t output_limit = 8u << 20;  ///< bytes: printing more stops the test
+  std::vector<int> tasks{1, 2, 3, 4, 5};  ///< the tasks graded
+};
+
+struct TestResult {
+  const TestInfo* test = nullptr;
+  bool passed = false;
+  std::string message;        ///< why it failed, for the student
+  std::string printed;        ///< what the code printed in the deciding run (the kept part)
+  std::size_t printed_bytes = 0;
+  double seconds = 0.0;            ///< the plain run's wall time
+  double sanitized_seconds = 0.0;  ///< the sanitized run's, when it ran
+};
+
+struct TaskResult {
+  int task = 0;
+  std::vector<std::string> notes;  ///< files left out or replaced by the starter code
+  std::string problem;   ///< why no test could run (does not compile, rejected); "" otherwise
+  std::string warnings;  ///< what the compiler said of code that compiled
+  std::vector<TestResult> tests;
+  double points() const;
+  double max_points() const;
+  int passed() const;
+};
+
+struct SubmissionResult {
+  Submission submission;
+  std::map<int, TaskResult> tasks;
+  double points() const;
+  double max_points() const;
+};
+
+/// Each test's wall time with the reference code, s, per variant ("plain", "sanitized").
+using Calibration = std::map<std::string, std::map<std::string, double>>;
+
+class Grader {
+ public:
+  Grader(const Kit& kit, const std::vector<TestInfo>& tests, Settings settings);
+
+  /// Grades the kit's own solutions with generous limits and keeps each test's time, or reads
+  /// them from `cache` when the kit has not changed since. Throws std::runtime_error when a
+  /// reference test fails: the kit is broken, and no submission could be graded fairly.
+  void calibrate(const fs::path& cache);
+
+  /// Grades every submission. `task_done` is called as each task of a submission is finished
+  /// (in any order), `submission_done` once all of a submission's tasks are.
+  std::vector<SubmissionResult> grade(
+      const std::vector<Submission>& submissions,
+      const std::function<void(const SubmissionResult&, int task)>& task_done,
+      const std::function<void(const SubmissionResult&)>& submission_done);
+
+  /// How the time limit is set, in words.
+  std::string time_limit_text() const;
+
+ private:
+  struct TaskBuild;
+  class Pipeline;
+  const Kit& kit_;
+  const std::vector<TestInfo>& tests_;
+  Settings settings_;
+  Calibration calibration_;
+
+  Limits test_limits(const TestInfo& test, const Variant& variant) const;
+  std::vector<SubmissionResult> run(const std::vector<Submission>& submissions, bool generous,
+                                    const std::function<void(const SubmissionResult&, int)>& task_done,
+                                    const std::function<void(const SubmissionResult&)>& done);
+};
+
+}  // namespace springlab::grader

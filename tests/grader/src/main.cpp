@@ -1,0 +1,207 @@
+// springlab-grade: grades any number of submissions in one run, for instructors (./lab grade) and
+// for a student's own check (./lab test --student). Exit status: 0 when every submission was
+// graded, whatever the scores (with --student: 0 only when every test passes, else 1); 1 when the
+// kit itself is broken; 2 for bad usage. See the README's instructor section.
+#include "grading.hpp"
+#include "kit.hpp"
+#include "points.hpp"
+#include "reports.hpp"
+#include "submission.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <chrono>
+#include <fstream>
+#include <iostream>
+#include <set>
+#include <thread>
+
+using namespace springlab::grader;
+
+namespace {
+
+constexpr const char* marker = ".springlab-grade";  // marks a folder this program may empty
+
+struct Options {
+  std::vector<std::string> submissions;
+  fs::path out = "build/grade/results";
+  fs::path work;  // default: beside out
+  fs::path points;
+  fs::path kit = SPRINGLAB_GRADER_KIT;
+  std::vector<int> tasks{1, 2, 3, 4, 5};
+  bool student = false;
+  Settings settings;
+};
+
+// Empties `folder` for a new run, refusing any folder this program did not make: nothing of an
+// earlier run survives, and nothing else is ever deleted.
+void prepare(const fs::path& folder) {
+  std::error_code error;
+  if (fs::exists(folder)) {
+    if (!fs::is_directory(folder))
+      throw UsageError(folder.string() + " exists and is not a folder");
+    if (!fs::is_empty(folder) && !fs::exists(folder / marker))
+      throw UsageError(folder.string() + " holds files springlab-grade did not write: choose " +
+                       "another folder, or empty it yourself");
+    fs::remove_all(folder, error);
+    if (error) throw UsageError("cannot empty " + folder.string() + ": " + error.message());
+  }
+  fs::create_directories(folder);
+  std::ofstream(folder / marker) << "written by springlab-grade, emptied by its next run\n";
+}
+
+std::string run_trusted(const std::vector<std::string>& argv) {
+  ProcessPool pool(1);
+  Command c;
+  c.argv = argv;
+  c.env = plain_environment();
+  c.directory = "/";
+  c.limits.output_kept = c.limits.output_limit;
+  std::string output;
+  pool.add(std::move(c), [&](Outcome o) {
+    if (!o.exited || o.exit_code != 0)
+      throw std::runtime_error(argv.front() + " failed: " + o.start_error + o.output);
+    output = std::move(o.output);
+  });
+  pool.run();
+  return output;
+}
+
+void write_file(const fs::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+std::vector<Submission> find_all(const Options& options, const Kit& kit) {
+  std::vector<Submission> found;
+  std::map<std::string, std::string> seen;
+  for (const std::string& folder : options.submissions) {
+    Submission s = find_submission(folder, kit);
+    const auto [it, fresh] = seen.emplace(s.name, folder);
+    if (!fresh)
+      throw UsageError("two submissions would share the name '" + s.name + "' in the " +
+                       "gradebook: " + it->second + " and " + folder + " (rename one folder)");
+    found.push_back(std::move(s));
+  }
+  return found;
+}
+
+int grade(const Options& options) {
+  const Kit kit = read_kit(options.kit);
+  std::vector<TestInfo> tests =
+      parse_test_list(run_trusted({kit.plain.harness.string(), "--list"}));
+  assign_points(tests, options.points.empty() ? kit.points : options.points);
+  const std::vector<Submission> submissions = find_all(options, kit);
+  Settings settings = options.settings;
+  settings.tasks = options.tasks;
+  settings.work = options.work.empty() ? options.out.parent_path() / "work" : options.work;
+  prepare(options.out);
+  prepare(settings.work);
+
+  Grader grader(kit, tests, settings);
+  const auto start = std::chrono::steady_clock::now();
+  std::cerr << "springlab-grade: the reference's time per test (measured once per build)\n";
+  grader.calibrate(options.kit.parent_path() / "calibration.txt");
+  std::cerr << "springlab-grade: grading " << submissions.size() << " submission"
+            << (submissions.size() == 1 ? "" : "s") << " (" << settings.jobs
+            << " at once; a test may take " << grader.time_limit_text() << ")\n";
+
+  bool all_passed = true;
+  std::size_t finished = 0;
+  std::map<std::string, std::set<int>> tasks_done;  // student mode: print tasks in order
+  const auto task_done = [&](const SubmissionResult& r, int task) {
+    if (!options.student) return;
+    std::set<int>& done = tasks_done[r.submission.name];
+    done.insert(task);
+    for (const int t : options.tasks) {
+      if (done.count(t) == 0) break;
+      if (done.count(-t) > 0) continue;  // printed already
+      std::cout << task_feedback(r, t, kit) << std::flush;
+      done.insert(-t);
+    }
+  };
+  const auto submission_done = [&](const SubmissionResult& r) {
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const fs::path folder = options.out / r.submission.name;
+    fs::create_directories(folder);
+    write_file(folder / "feedback.txt", feedback(r, kit));
+    write_file(folder / "results.json", results_json(r, seconds));
+    for (const auto& [task, result] : r.tasks)
+      write_file(folder / ("task" + std::to_string(task) + ".junit.xml"), junit_report(r, task));
+    all_passed = all_passed && r.points() == r.max_points();
+    ++finished;
+    if (options.student) {
+      std::cout << summary_feedback(r);
+    } else if (submissions.size() == 1) {
+      std::cout << feedback(r, kit);
+    } else {
+      std::cout << "[" << finished << "/" << submissions.size() << "] " << printable(r.submission.name)
+                << ": " << points_text(r.points()) << " of " << points_text(r.max_points())
+                << " points" << std::endl;
+    }
+  };
+  const std::vector<SubmissionResult> results =
+      grader.grade(submissions, task_done, submission_done);
+  write_file(options.out / "gradebook.csv", gradebook(results));
+  if (!options.student)
+    std::cerr << "springlab-grade: " << options.out.string() << "/gradebook.csv, and per "
+              << "submission feedback.txt, results.json and taskN.junit.xml\n";
+  return options.student && !all_passed ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  options.settings.jobs = std::max(1, int(std::thread::hardware_concurrency()));
+  CLI::App app("springlab-grade: grades submissions of the springlab tasks, each test in a "
+               "process of its own under limits, plain and with the sanitizers");
+  app.add_option("submission", options.submissions,
+                 "a copy of tasks/, a student repository (its tasks/ is used) or a folder of "
+                 "the loose .cpp files")
+      ->required();
+  app.add_option("--out", options.out, "results: gradebook.csv and a folder per submission")
+      ->capture_default_str();
+  app.add_option("--work", options.work, "private copies and builds (default: beside --out)");
+  app.add_option("--jobs", options.settings.jobs, "processes at once")
+      ->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  app.add_option("--points", options.points, "the points file (default: the kit's)");
+  app.add_option("--tasks", options.tasks, "the tasks to grade")
+      ->delimiter(',')
+      ->check(CLI::Range(1, 5));
+  app.add_option("--time-factor", options.settings.time_factor,
+                 "a test may take this many times the reference's time")
+      ->check(CLI::Range(1.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--time-floor", options.settings.time_floor, "...and at least this many s")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
+  app.add_option("--memory", options.settings.memory_mb, "MB of memory per test process")
+      ->check(CLI::Range(64L, 65536L))
+      ->capture_default_str();
+  app.add_flag("--student", options.student,
+               "a student's check: the feedback on the terminal; exit 1 unless every test passes");
+  app.add_option("--kit", options.kit, "the kit.toml of the build to use")->capture_default_str();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& error) {
+    if (error.get_exit_code() == 0) return app.exit(error);
+    std::cerr << "springlab-grade: " << error.what() << " (springlab-grade --help lists the "
+              << "options)\n";
+    return 2;
+  }
+  std::sort(options.tasks.begin(), options.tasks.end());
+  options.tasks.erase(std::unique(options.tasks.begin(), options.tasks.end()), options.tasks.end());
+  try {
+    return grade(options);
+  } catch (const UsageError& error) {
+    std::cerr << "springlab-grade: " << error.what() << '\n';
+    return 2;
+  } catch (const std::exception& error) {
+    std::cerr << "springlab-grade: " << error.what() << '\n';
+    return 1;
+  }
+}

@@ -1,0 +1,73 @@
+// Running other programs under limits: the compiler and linker on a submission's files, and the
+// test harness with a submission's code in it. Nothing a child prints, writes or returns is taken
+// on trust: the grader measures time and memory itself, keeps a bounded part of the output and
+// stops the whole process group when a limit is hit.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace springlab::grader {
+
+struct Limits {
+  double wall_seconds = 60.0;             ///< s of real time, then the group is killed
+  double cpu_seconds = 60.0;              ///< s of processor time (RLIMIT_CPU, whole seconds)
+  long address_space_mb = 4096;          ///< MB (RLIMIT_AS); 0: none (sanitizers need terabytes)
+  long resident_mb = 0;                   ///< MB of resident memory, watched; 0: not watched
+  long file_size_mb = 0;                  ///< MB: the largest file the child may write
+  std::size_t output_kept = 64 * 1024;    ///< bytes of stdout and stderr kept, the rest counted
+  std::size_t output_limit = 8u << 20;    ///< bytes: printing more stops the child
+  std::size_t records_limit = 1u << 20;   ///< bytes accepted on the record channel (fd 3)
+};
+
+struct Command {
+  std::vector<std::string> argv;  ///< argv[0] is the program's path
+  std::vector<std::string> env;   ///< the whole environment, "NAME=value"
+  std::string directory;          ///< working directory
+  std::string secret;             ///< when set: sent on fd 4; records are read from fd 3
+  Limits limits;
+};
+
+/// Why the grader stopped a child, if it did.
+enum class Stop { none, wall_time, cpu_time, memory, output };
+
+struct Outcome {
+  bool exited = false;      ///< ended by exit(); then exit_code is its status
+  int exit_code = 0;
+  int signal = 0;           ///< the signal that ended it, when !exited
+  Stop stopped = Stop::none;
+  double wall_seconds = 0;  ///< from start to end, s
+  double cpu_seconds = 0;   ///< user + system, s
+  long peak_resident_kb = 0;
+  std::string output;       ///< the first output_kept bytes of stdout and stderr, interleaved
+  std::size_t output_bytes = 0;  ///< everything printed, bytes
+  std::string records;      ///< what arrived on fd 3 (at most records_limit bytes)
+  std::string start_error;  ///< set when the program could not be started at all
+};
+
+/// Runs commands, at most `parallel` at once, in one thread. `done` is called with each
+/// command's outcome as it ends and may add further commands.
+class ProcessPool {
+ public:
+  explicit ProcessPool(int parallel);
+  ~ProcessPool();
+  ProcessPool(const ProcessPool&) = delete;
+  ProcessPool& operator=(const ProcessPool&) = delete;
+
+  void add(Command command, std::function<void(Outcome)> done);
+
+  /// Returns once every command added, including those added by callbacks, has ended.
+  void run();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+/// The environment a child gets: a fixed PATH and locale, nothing of the grader's own.
+std::vector<std::string> plain_environment();
+
+}  // namespace springlab::grader

@@ -1,0 +1,226 @@
+#include "reports.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+namespace springlab::grader {
+namespace {
+
+constexpr std::size_t printed_in_feedback = 2048;  // bytes of a failing test's output shown
+
+std::string indented(const std::string& text, const std::string& indent) {
+  std::istringstream lines(text);
+  std::string line, result;
+  while (std::getline(lines, line))
+    result += indent + line + '\n';
+  return result;
+}
+
+std::string bytes_text(std::size_t bytes) {
+  std::ostringstream out;
+  if (bytes < 10000)
+    out << bytes << " bytes";
+  else if (bytes < (10u << 20))
+    out << bytes / 1024 << " KB";
+  else
+    out << (bytes >> 20) << " MB";
+  return out.str();
+}
+
+// The explanation of one failed test, with what its code printed (the start of it).
+std::string failure_text(const TestResult& t, std::size_t shown) {
+  std::string text = printable(t.message) + '\n';
+  if (t.printed_bytes > 0) {
+    text += "your code printed " + bytes_text(t.printed_bytes) +
+            (t.printed_bytes > shown ? ", of which the first " + bytes_text(shown) : "") + ":\n";
+    text += indented(printable(t.printed.substr(0, shown)), "| ");
+  }
+  return text;
+}
+
+std::string count_text(const TaskResult& r) {
+  return std::to_string(r.passed()) + " of " + std::to_string(r.tests.size()) +
+         " tests pass (" + points_text(r.points()) + " of " + points_text(r.max_points()) +
+         " points)";
+}
+
+std::string xml(const std::string& text) {
+  std::string out;
+  for (const char c : printable(text)) {
+    switch (c) {
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '&': out += "&amp;"; break;
+      case '"': out += "&quot;"; break;
+      case '\t': out += "&#9;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+std::string csv(const std::string& field) {
+  if (field.find_first_of(",\"\n\r") == std::string::npos) return field;
+  std::string quoted = "\"";
+  for (const char c : field)
+    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+std::string points_text(double points) {
+  std::ostringstream out;
+  out << std::round(points * 100.0) / 100.0;
+  return out.str();
+}
+
+std::string printable(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size();) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80) {
+      out += (c < 0x20 && c != '\n' && c != '\t') || c == 0x7f ? '?' : char(c);
+      ++i;
+      continue;
+    }
+    // A UTF-8 sequence: a lead byte for 2-4 bytes, then continuation bytes 10xxxxxx.
+    const std::size_t length = c >= 0xf0 && c < 0xf5 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 ? 2 : 0;
+    bool valid = length > 0 && c < 0xf5 && i + length <= text.size();
+    for (std::size_t k = 1; valid && k < length; ++k)
+      valid = (static_cast<unsigned char>(text[i + k]) & 0xc0) == 0x80;
+    if (valid) {
+      out.append(text, i, length);
+      i += length;
+    } else {
+      out += '?';
+      ++i;
+    }
+  }
+  return out;
+}
+
+std::string task_feedback(const SubmissionResult& result, int task, const Kit& kit) {
+  const TaskResult& r = result.tasks.at(task);
+  std::ostringstream out;
+  out << "==> Task " << task << ": the code in tasks/" << kit.task_folder(task)
+      << "/ (handout section " << task << ")\n";
+  for (const std::string& note : r.notes)
+    out << "  note: " << printable(note) << '\n';
+  if (!r.problem.empty()) {
+    out << indented(printable(r.problem), "  ");
+    out << "\n" << count_text(r) << ".\n";
+    return out.str();
+  }
+  if (!r.warnings.empty())
+    out << "  the compiler warns (the tests still run):\n" << indented(printable(r.warnings), "    ");
+  for (const TestResult& t : r.tests) {
+    out << "  " << t.test->name << " ... " << (t.passed ? "pass" : "FAIL") << '\n';
+    if (!t.passed) out << indented(failure_text(t, printed_in_feedback), "        ");
+  }
+  out << '\n'
+      << count_text(r)
+      << (r.passed() == int(r.tests.size()) ? "." : "; fix the first FAIL above first, then run again.")
+      << '\n';
+  return out.str();
+}
+
+std::string summary_feedback(const SubmissionResult& result) {
+  std::ostringstream out;
+  out << "==> Summary: " << points_text(result.points()) << " of "
+      << points_text(result.max_points()) << " points\n";
+  for (const auto& [task, r] : result.tasks) {
+    out << "  task " << task << ": ";
+    if (r.problem.rfind("does not compile", 0) == 0)
+      out << "does not compile (0 of " << points_text(r.max_points()) << " points)\n";
+    else if (!r.problem.empty())
+      out << "not graded: " << printable(r.problem.substr(r.problem.find('\n') + 1, 200)) << '\n';
+    else
+      out << count_text(r) << '\n';
+  }
+  return out.str();
+}
+
+std::string feedback(const SubmissionResult& result, const Kit& kit) {
+  std::string text;
+  for (const auto& [task, r] : result.tasks)
+    text += task_feedback(result, task, kit);
+  return text + summary_feedback(result);
+}
+
+std::string results_json(const SubmissionResult& result, double seconds) {
+  using nlohmann::json;
+  json tests = json::array();
+  for (const auto& [task, r] : result.tasks)
+    for (const TestResult& t : r.tests) {
+      std::string output;
+      if (!r.notes.empty())
+        for (const std::string& note : r.notes)
+          output += "note: " + printable(note) + "\n";
+      if (!r.problem.empty())
+        output += printable(r.problem);
+      else if (!t.passed)
+        output += failure_text(t, 8192);
+      json tags = json::array({"task" + std::to_string(task)});
+      for (const std::string& tag : t.test->tags)
+        if (tag != tags.front()) tags.push_back(tag);
+      tests.push_back({{"name", "Task " + std::to_string(task) + ": " + t.test->name},
+                       {"number", std::to_string(task) + "." + std::to_string(t.test->number)},
+                       {"score", t.passed ? t.test->points : 0.0},
+                       {"max_score", t.test->points},
+                       {"status", t.passed ? "passed" : "failed"},
+                       {"output", output},
+                       {"tags", tags},
+                       {"visibility", "visible"}});
+    }
+  const json results = {{"score", std::round(result.points() * 100.0) / 100.0},
+                        {"execution_time", long(std::lround(seconds))},
+                        {"output", summary_feedback(result)},
+                        {"visibility", "visible"},
+                        {"stdout_visibility", "hidden"},
+                        {"tests", tests}};
+  return results.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
+}
+
+std::string junit_report(const SubmissionResult& result, int task) {
+  const TaskResult& r = result.tasks.at(task);
+  const std::size_t failures = r.tests.size() - std::size_t(r.passed());
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(3);
+  out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<testsuites name=\"springlab " << xml(result.submission.name) << "\" tests=\""
+      << r.tests.size() << "\" failures=\"" << failures << "\">\n"
+      << "  <testsuite name=\"task" << task << "\" tests=\"" << r.tests.size()
+      << "\" failures=\"" << failures << "\">\n";
+  for (const TestResult& t : r.tests) {
+    out << "    <testcase classname=\"springlab.task" << task << "\" name=\"" << xml(t.test->name)
+        << "\" time=\"" << t.seconds << "\">\n";
+    if (!t.passed) {
+      const std::string text = r.problem.empty() ? failure_text(t, 8192) : r.problem;
+      out << "      <failure message=\"" << xml(t.message.substr(0, t.message.find('\n')))
+          << "\">" << xml(text) << "</failure>\n";
+    }
+    out << "    </testcase>\n";
+  }
+  out << "  </testsuite>\n</testsuites>\n";
+  return out.str();
+}
+
+std::string gradebook(const std::vector<SubmissionResult>& results) {
+  std::string text = "submission,task1,task2,task3,task4,task5,total\n";
+  for (const SubmissionResult& r : results) {
+    text += csv(printable(r.submission.name));
+    for (int task = 1; task <= 5; ++task) {
+      const auto it = r.tasks.find(task);
+      text += "," + (it == r.tasks.end() ? std::string() : points_text(it->second.points()));
+    }
+    text += "," + points_text(r.points()) + "\n";
+  }
+  return text;
+}
+
+}  // namespace springlab::grader

@@ -1,0 +1,40 @@
+// What grading leaves behind, per submission: the feedback a student reads (the same text
+// `./lab test --student` prints), results.json in Gradescope's format and a JUnit report per task;
+// and for the class, gradebook.csv. Text that a submission could influence (its output, its
+// compiler messages) is made printable first: no terminal escapes, valid UTF-8, bounded.
+#pragma once
+
+#include "grading.hpp"
+
+#include <string>
+#include <vector>
+
+namespace springlab::grader {
+
+/// Task `task`'s part of the feedback: a heading, one line per test, the first failure of each
+/// failing test explained, and a closing count.
+std::string task_feedback(const SubmissionResult& result, int task, const Kit& kit);
+
+/// The closing summary: one line per task graded and the total.
+std::string summary_feedback(const SubmissionResult& result);
+
+/// Every task's feedback, then the summary (feedback.txt).
+std::string feedback(const SubmissionResult& result, const Kit& kit);
+
+/// results.json for Gradescope: one entry per test with score, max_score, status, output, tags
+/// (taskN and the test's own) and visibility; `seconds` is the run's execution_time.
+std::string results_json(const SubmissionResult& result, double seconds);
+
+/// A JUnit XML report of one task.
+std::string junit_report(const SubmissionResult& result, int task);
+
+/// gradebook.csv: "submission,task1,task2,task3,task4,task5,total" and one row per submission.
+std::string gradebook(const std::vector<SubmissionResult>& results);
+
+/// Points as people write them: "12", "2.5".
+std::string points_text(double points);
+
+/// `text` with control characters (but newlines and tabs) and invalid UTF-8 replaced by '?'.
+std::string printable(const std::string& text);
+
+}  // namespace springlab::grader

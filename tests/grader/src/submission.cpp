@@ -1,0 +1,127 @@
+#include "submission.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <iterator>
+#include <set>
+#include <sstream>
+
+namespace springlab::grader {
+namespace {
+
+constexpr std::uintmax_t largest_file = 1 << 20;  // bytes: larger files are left out
+constexpr int most_files = 64;                     // files copied per task folder
+
+std::string file_name(const std::string& kit_path) {
+  return kit_path.substr(kit_path.find('/') + 1);
+}
+
+std::string read_bytes(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+bool is_task_folder(const fs::path& path, const Kit& kit) {
+  for (int task = 1; task <= 5; ++task)
+    if (path.filename() == kit.task_folder(task)) return true;
+  return false;
+}
+
+}  // namespace
+
+std::string to_string(Layout layout) {
+  switch (layout) {
+    case Layout::tasks_folder:
+      return "a copy of tasks/";
+    case Layout::repository:
+      return "a student repository";
+    case Layout::loose_files:
+      return "loose files";
+  }
+  return "?";
+}
+
+Submission find_submission(const fs::path& folder, const Kit& kit) {
+  std::error_code error;
+  const fs::path root = fs::canonical(folder, error);
+  if (error || !fs::is_directory(root))
+    throw UsageError("submission '" + folder.string() + "': not a folder");
+  Submission s;
+  s.folder = root;
+  s.name = root.filename().string();
+  if (s.name.empty()) s.name = "root";
+  fs::path tasks_root = root;
+  s.layout = Layout::loose_files;
+  if (fs::is_directory(root / "tasks")) {
+    s.layout = Layout::repository;
+    tasks_root = root / "tasks";
+  } else {
+    for (const fs::directory_entry& entry : fs::directory_iterator(root, error))
+      if (entry.is_directory() && is_task_folder(entry.path(), kit)) s.layout = Layout::tasks_folder;
+  }
+  for (const auto& [task, files] : kit.task_files) {
+    TaskSource& source = s.tasks[task];
+    source.folder = s.layout == Layout::loose_files ? root : tasks_root / kit.task_folder(task);
+    if (!fs::is_directory(source.folder)) source.folder.clear();
+    for (const std::string& kit_file : files) {
+      const std::string name = file_name(kit_file);
+      const fs::path path = source.folder / name;
+      if (!source.folder.empty() && fs::is_regular_file(fs::symlink_status(path)))
+        source.found.push_back(name);
+      else
+        source.missing.push_back(name);
+    }
+  }
+  return s;
+}
+
+TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
+                   const fs::path& destination) {
+  const TaskSource& source = submission.tasks.at(task);
+  TaskCopy copy;
+  copy.folder = destination / "tasks" / kit.task_folder(task);
+  fs::create_directories(copy.folder);
+  std::set<std::string> other_tasks_files;
+  for (const auto& [n, files] : kit.task_files)
+    if (n != task)
+      for (const std::string& f : files)
+        other_tasks_files.insert(file_name(f));
+
+  std::vector<fs::path> files;
+  std::error_code error;
+  if (!source.folder.empty())
+    for (const fs::directory_entry& entry : fs::directory_iterator(source.folder, error)) {
+      const std::string name = entry.path().filename().string();
+      if (entry.is_directory() || other_tasks_files.count(name) > 0) continue;
+      if (entry.is_symlink()) {
+        copy.notes.push_back(name + " is a link, not a file: left out (submit the file itself)");
+        continue;
+      }
+      if (!entry.is_regular_file()) continue;
+      if (entry.file_size() > largest_file) {
+        copy.notes.push_back(name + " is larger than 1 MB: left out");
+        continue;
+      }
+      files.push_back(entry.path());
+    }
+  std::sort(files.begin(), files.end());
+  if (files.size() > std::size_t(most_files)) {
+    copy.notes.push_back("more than " + std::to_string(most_files) + " files in " +
+                         source.folder.string() + ": only the first are used");
+    files.resize(std::size_t(most_files));
+  }
+  for (const std::string& name : source.missing) {
+    files.push_back(kit.starter / kit.task_folder(task) / name);
+    copy.notes.push_back(name + " is missing: graded as the starter code");
+  }
+  std::sort(files.begin(), files.end(),
+            [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
+  for (const fs::path& file : files) {
+    const std::string bytes = read_bytes(file);
+    std::ofstream(copy.folder / file.filename(), std::ios::binary) << bytes;
+    copy.contents += file.filename().string() + '\0' + std::to_string(bytes.size()) + '\0' + bytes;
+  }
+  return copy;
+}
+
+}  // namespace springlab::grader

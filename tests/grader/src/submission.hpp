@@ -1,0 +1,58 @@
+// A submission as the grader finds it: a copy of tasks/ (task1_two_masses/ ... task5_fabric/), a
+// whole student repository (its tasks/), or a folder of the loose .cpp files, matched by name. The
+// grader only reads it: every file it compiles is a private copy, so the submission on disk is
+// never written, and nothing outside the copy can be reached by a relative #include.
+#pragma once
+
+#include "kit.hpp"
+
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace springlab::grader {
+
+/// Bad usage: the grader exits with status 2 and this message.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+enum class Layout { tasks_folder, repository, loose_files };
+
+/// Where one task's files of a submission are.
+struct TaskSource {
+  fs::path folder;                 ///< searched for the task's files ("" if the task has none)
+  std::vector<std::string> found;  ///< the kit's file names found there, e.g. "spring_damper.cpp"
+  std::vector<std::string> missing;  ///< the kit's file names not found: the starter code is used
+};
+
+struct Submission {
+  std::string name;  ///< the base name of its folder: its row in the gradebook
+  fs::path folder;   ///< absolute
+  Layout layout = Layout::tasks_folder;
+  std::map<int, TaskSource> tasks;  ///< 1-5
+};
+
+/// Finds the task files of the submission in `folder`. Throws UsageError when it is not a folder.
+Submission find_submission(const fs::path& folder, const Kit& kit);
+
+/// What the copy of one task holds, beside the files themselves: what a student should know.
+struct TaskCopy {
+  fs::path folder;                 ///< destination/tasks/<task folder>
+  std::vector<std::string> notes;  ///< files left out or replaced, and why
+  std::string contents;  ///< every file's name and bytes: equal for two copies exactly when
+                         ///< they hold the same files, so equal copies are graded once
+};
+
+/// Copies task `task` of `submission` into `destination`/tasks/<task folder>/: the task's files,
+/// the starter code in place of missing ones, and the submission's other regular files of that
+/// folder (its own headers) up to a size limit; never links.
+TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
+                   const fs::path& destination);
+
+/// "a copy of tasks/", "a student repository", "loose files".
+std::string to_string(Layout layout);
+
+}  // namespace springlab::grader

@@ -1,0 +1,133 @@
+#include "verdict.hpp"
+
+#include "sanitizer.hpp"
+
+#include <seccomp.h>
+#include <signal.h>
+#include <sys/random.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <sstream>
+
+namespace springlab::grader {
+namespace {
+
+// The records of a run: kind -> payload, from "<secret> <kind> <size>\n<payload>". Only the
+// harness knows the secret, so whatever else reached fd 3 is skipped over.
+std::map<std::string, std::string> records_of(const std::string& text, const std::string& secret) {
+  std::map<std::string, std::string> records;
+  for (std::size_t at = text.find(secret); at != std::string::npos; at = text.find(secret, at + 1)) {
+    const auto end_of_line = text.find('\n', at);
+    if (end_of_line == std::string::npos) break;
+    std::istringstream header(text.substr(at + secret.size(), end_of_line - at - secret.size()));
+    std::string kind;
+    std::size_t size = 0;
+    if (!(header >> kind >> size) || size > text.size() - end_of_line - 1) continue;
+    records.emplace(kind, text.substr(end_of_line + 1, size));
+    at = end_of_line + size;
+  }
+  return records;
+}
+
+std::string seconds(double s) {
+  std::ostringstream out;
+  out.precision(s < 10 ? 2 : 3);
+  out << s << " s";
+  return out.str();
+}
+
+std::string signal_text(int signal) {
+  switch (signal) {
+    case SIGSEGV:
+      return "segmentation fault (an invalid memory access: an index out of range, or a null "
+             "pointer?)";
+    case SIGBUS:
+      return "bus error (an invalid memory access)";
+    case SIGFPE:
+      return "arithmetic error (an integer division by zero?)";
+    case SIGABRT:
+      return "aborted (a failed assertion, or an error nothing caught?)";
+    case SIGILL:
+      return "illegal instruction (a function that returns no value where one is due?)";
+    default:
+      return std::string("signal ") + std::to_string(signal) + " (" + strsignal(signal) + ")";
+  }
+}
+
+}  // namespace
+
+std::string new_secret() {
+  unsigned char bytes[16];
+  std::size_t got = 0;
+  while (got < sizeof bytes) {
+    const ssize_t n = getrandom(bytes + got, sizeof bytes - got, 0);
+    if (n > 0) got += std::size_t(n);
+  }
+  static const char digits[] = "0123456789abcdef";
+  std::string secret;
+  for (const unsigned char b : bytes)
+    secret += {digits[b >> 4], digits[b & 15]};
+  return secret;
+}
+
+std::string system_call_name(long number) {
+  char* name = seccomp_syscall_resolve_num_arch(SCMP_ARCH_NATIVE, int(number));
+  std::string result = name ? name : "number " + std::to_string(number);
+  std::free(name);
+  return result;
+}
+
+RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limits,
+                 const LimitsText& text) {
+  if (!o.start_error.empty()) return {false, "the grader could not start the test: " + o.start_error};
+  switch (o.stopped) {
+    case Stop::wall_time:
+      return {false, "timed out: stopped after " + seconds(o.wall_seconds) + " (the limit is " +
+                         text.time + "; an endless loop?)"};
+    case Stop::cpu_time:
+      return {false, "used more than " + seconds(std::ceil(limits.cpu_seconds)) +
+                         " of processor time (the limit is " + text.time + "): stopped"};
+    case Stop::output:
+      return {false, "printed more than " + std::to_string(limits.output_limit >> 20) +
+                         " MB: stopped (printing inside a loop over every step?)"};
+    case Stop::memory:
+      return {false, "used more than " + std::to_string(limits.resident_mb) +
+                         " MB of memory: stopped"};
+    case Stop::none:
+      break;
+  }
+  const auto records = records_of(o.records, secret);
+  if (const auto it = records.find("forbidden"); it != records.end())
+    return {false, "stopped: your code asked the system for something tests never need (" +
+                       system_call_name(std::atol(it->second.c_str())) +
+                       "). While grading, code may not start programs or threads, change files "
+                       "or signal other processes"};
+  if (const auto it = records.find("error"); it != records.end())
+    return {false, "the test could not run: " + it->second};
+  const auto verdict = records.find("verdict");
+  if (verdict != records.end() && o.exited && o.exit_code == 0) {
+    const std::string& payload = verdict->second;
+    const bool passed = payload.rfind("pass ", 0) == 0;
+    const auto newline = payload.find('\n');
+    std::string message = newline == std::string::npos ? "" : payload.substr(newline + 1);
+    if (!passed && message.empty()) message = "no check ran";
+    if (message.find("std::bad_alloc") != std::string::npos && limits.address_space_mb > 0)
+      message += "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) +
+                 " MB)";
+    return {passed, passed ? "" : message};
+  }
+  const std::string report = explain_sanitizer_report(o.output);
+  if (!report.empty()) return {false, report};
+  if (!o.exited) return {false, "crashed: " + signal_text(o.signal)};
+  if (records.count("loaded") == 0)
+    return {false, "ended while your code was being loaded, before the test began (exit status " +
+                       std::to_string(o.exit_code) +
+                       "): does the initialiser of a global variable call exit()?"};
+  return {false, "exited before the test finished (exit status " + std::to_string(o.exit_code) +
+                     "): does your code call exit(), _exit() or abort()?"};
+}
+
+}  // namespace springlab::grader
