@@ -3,7 +3,8 @@
 # Every task file is compiled into an inline namespace named by SPRINGLAB_IMPL:
 #   reference       all of solutions/
 #   student_taskN   the student's task N files (tasks/taskN_*) and solutions/ for the other tasks
-# so the tests of task N grade task N alone, and one program can hold every build at once.
+# so that one program (the runner, the viewer) can hold every build at once and switch between
+# them. The grader builds submissions its own way (tests/grader/).
 
 file(GLOB SPRINGLAB_SOLUTION_FILES CONFIGURE_DEPENDS
      RELATIVE "${PROJECT_SOURCE_DIR}/solutions" "${PROJECT_SOURCE_DIR}/solutions/task*/*.cpp")
@@ -29,30 +30,22 @@ function(springlab_object out ns tree file)
     if(tree STREQUAL "solutions")
       target_link_libraries(${target} PRIVATE springlab_warnings)
       set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION ${SPRINGLAB_IPO})
-    else()  # a student's file or a mutant: warn, never fail the build
+    else()  # a student's file: warn, never fail the build
       target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS})
     endif()
   endif()
   set(${out} ${target} PARENT_SCOPE)
 endfunction()
 
-# springlab_add_implementation(TARGET NS STUDENT_TASK [REPLACE relpath file])
-# The solutions in namespace NS, with task STUDENT_TASK's files taken from SPRINGLAB_TASKS_DIR,
-# or, with REPLACE, the one file relpath taken from `file` (a mutant).
+# springlab_add_implementation(TARGET NS STUDENT_TASK): the solutions in namespace NS, with task
+# STUDENT_TASK's files taken from SPRINGLAB_TASKS_DIR (0: none, the reference).
 function(springlab_add_implementation target ns student_task)
-  cmake_parse_arguments(ARG "" "" "REPLACE" ${ARGN})
   set(objects "")
   foreach(rel IN LISTS SPRINGLAB_SOLUTION_FILES)
     springlab_task_of("${rel}" task)
     set(tree solutions)
     set(file "${PROJECT_SOURCE_DIR}/solutions/${rel}")
-    if(ARG_REPLACE)
-      list(GET ARG_REPLACE 0 replaced)
-      if(rel STREQUAL replaced)
-        set(tree "${target}")
-        list(GET ARG_REPLACE 1 file)
-      endif()
-    elseif(task STREQUAL "${student_task}")
+    if(task STREQUAL "${student_task}")
       set(tree tasks)
       set(file "${SPRINGLAB_TASKS_DIR}/${rel}")
       if(NOT EXISTS "${file}")

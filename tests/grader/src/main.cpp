@@ -24,7 +24,7 @@ constexpr const char* marker = ".springlab-grade";  // marks a folder this progr
 
 struct Options {
   std::vector<std::string> submissions;
-  fs::path out = "build/grade/results";
+  fs::path out = SPRINGLAB_GRADER_OUT;
   fs::path work;  // default: beside out
   fs::path points;
   fs::path kit = SPRINGLAB_GRADER_KIT;
@@ -103,9 +103,13 @@ int grade(const Options& options) {
   const auto start = std::chrono::steady_clock::now();
   std::cerr << "springlab-grade: the reference's time per test (measured once per build)\n";
   grader.calibrate(options.kit.parent_path() / "calibration.txt");
-  std::cerr << "springlab-grade: grading " << submissions.size() << " submission"
-            << (submissions.size() == 1 ? "" : "s") << " (" << settings.jobs
-            << " at once; a test may take " << grader.time_limit_text() << ")\n";
+  if (options.student)
+    std::cerr << "springlab-grade: compiling your code, then running each test in a process of "
+              << "its own, plainly and with the sanitizers (which check every memory access)\n";
+  else
+    std::cerr << "springlab-grade: grading " << submissions.size() << " submission"
+              << (submissions.size() == 1 ? "" : "s") << " (" << settings.jobs
+              << " processes at once; a test may take " << grader.time_limit_text() << ")\n";
 
   bool all_passed = true;
   std::size_t finished = 0;

@@ -1,0 +1,267 @@
+// The grader's proof, in one batch as CI runs it (label grader): the starter code scores nothing
+// and says what to write, the solutions score everything, every mutant (tests/mutants/*.patch)
+// loses points in its own task and in no other, and every hostile or broken submission
+// (tests/grader/hostile/*/, see expect.toml there) gets the score and the feedback it must; the
+// submissions and the kit's sources on disk are unchanged afterwards, and no report grows large.
+#include "process.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <toml++/toml.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+namespace fs = std::filesystem;
+using namespace springlab::grader;
+
+namespace {
+
+const fs::path kit = SPRINGLAB_SOURCE_DIR;
+const fs::path batch = SPRINGLAB_BATCH_DIR;
+const fs::path submissions = batch / "submissions";
+
+enum class Points { full, none, some, less };
+
+struct Expectation {
+  std::string name;  // the submission's folder, and its row in the gradebook
+  std::string what;
+  std::map<int, Points> points;         // per task
+  std::map<int, std::string> feedback;  // per task: a regex its feedback must match
+};
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Every file under `folder`, its path and bytes: equal before and after exactly when nothing
+// was written, added or removed.
+std::string snapshot(const fs::path& folder) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file()) files[entry.path().string()] = read(entry.path());
+  std::string text;
+  for (const auto& [path, bytes] : files)
+    text += path + '\0' + bytes + '\0';
+  return text;
+}
+
+// Runs a trusted program (the grader, patch) and returns its exit status and output.
+std::pair<int, std::string> run(std::vector<std::string> argv) {
+  ProcessPool pool(1);
+  Command c;
+  c.argv = std::move(argv);
+  c.env = plain_environment();
+  c.directory = batch.string();
+  c.limits.wall_seconds = c.limits.cpu_seconds = 3600;
+  c.limits.address_space_mb = 0;
+  c.limits.file_size_mb = 4096;
+  std::pair<int, std::string> result{-1, ""};
+  pool.add(std::move(c), [&](Outcome o) {
+    result = {o.exited ? o.exit_code : 128 + o.signal, o.start_error + o.output};
+  });
+  pool.run();
+  return result;
+}
+
+// The kit's file names (spring_damper.cpp) and the task folder each belongs in.
+std::map<std::string, std::string> kit_files() {
+  std::map<std::string, std::string> files;
+  for (const auto& folder : fs::directory_iterator(kit / "solutions"))
+    for (const auto& file : fs::directory_iterator(folder.path()))
+      files[file.path().filename().string()] = folder.path().filename().string();
+  return files;
+}
+
+Points parse_points(const std::string& text, const std::string& where) {
+  if (text == "full") return Points::full;
+  if (text == "none") return Points::none;
+  if (text == "some") return Points::some;
+  if (text == "less") return Points::less;
+  FAIL(where << ": points = \"" << text << "\": one of full, none, some, less");
+  return Points::none;
+}
+
+Expectation all(const std::string& name, const std::string& what, Points points) {
+  Expectation e{name, what, {}, {}};
+  for (int task = 1; task <= 5; ++task)
+    e.points[task] = points;
+  return e;
+}
+
+// A hostile case: its base (solutions/ or the starter code) with the case's files over it.
+Expectation hostile(const fs::path& folder) {
+  const fs::path expect_file = folder / "expect.toml";
+  toml::table expect;
+  try {
+    expect = toml::parse_file(expect_file.string());
+  } catch (const toml::parse_error& error) {
+    FAIL(expect_file << ": " << error.description());
+  }
+  const std::string base = expect["base"].value_or(std::string("solutions"));
+  REQUIRE((base == "solutions" || base == "starter"));
+  Expectation e = all(folder.filename().string(), expect["what"].value_or(std::string("?")),
+                      base == "solutions" ? Points::full : Points::none);
+  const fs::path target = submissions / e.name;
+  fs::copy(kit / (base == "solutions" ? "solutions" : "tasks"), target,
+           fs::copy_options::recursive);
+  const std::map<std::string, std::string> known = kit_files();
+  std::vector<std::string> touched, helpers;
+  for (const auto& file : fs::directory_iterator(folder)) {
+    const std::string name = file.path().filename().string();
+    if (name == "expect.toml") continue;
+    if (known.count(name) > 0) {
+      fs::copy_file(file.path(), target / known.at(name) / name,
+                    fs::copy_options::overwrite_existing);
+      touched.push_back(known.at(name));
+    } else {
+      helpers.push_back(name);
+    }
+  }
+  for (const std::string& helper : helpers)
+    for (const std::string& task_folder : touched)
+      fs::copy_file(folder / helper, target / task_folder / helper,
+                    fs::copy_options::overwrite_existing);
+  for (int task = 1; task <= 5; ++task) {
+    const std::string key = "task" + std::to_string(task);
+    if (const auto points = expect[key]["points"].value<std::string>())
+      e.points[task] = parse_points(*points, expect_file.string() + " [" + key + "]");
+    if (const auto feedback = expect[key]["feedback"].value<std::string>())
+      e.feedback[task] = *feedback;
+  }
+  return e;
+}
+
+// A mutant: the solutions with one patch applied; its own task loses points, no other does.
+Expectation mutant(const fs::path& patch) {
+  const std::string text = read(patch);
+  std::smatch m;
+  REQUIRE(std::regex_search(text, m, std::regex(R"(\n\+\+\+ b/(task\d)[^/]*/)")));
+  const int task = m[1].str()[4] - '0';
+  Expectation e = all("mutant-" + patch.stem().string(), "the mutant " + patch.filename().string(),
+                      Points::full);
+  e.points[task] = Points::less;
+  const fs::path target = submissions / e.name;
+  fs::copy(kit / "solutions", target, fs::copy_options::recursive);
+  const auto [status, output] = run({SPRINGLAB_PATCH, "--fuzz=0", "--silent", "-p1", "-d",
+                                     target.string(), "-i", patch.string()});
+  INFO(output);
+  REQUIRE(status == 0);
+  return e;
+}
+
+// The points of each task in the gradebook, by submission.
+std::map<std::string, std::vector<double>> read_gradebook(const fs::path& file) {
+  std::map<std::string, std::vector<double>> rows;
+  std::istringstream lines(read(file));
+  std::string line;
+  std::getline(lines, line);
+  REQUIRE(line == "submission,task1,task2,task3,task4,task5,total");
+  while (std::getline(lines, line)) {
+    std::istringstream cells(line);
+    std::string name, cell;
+    std::getline(cells, name, ',');
+    std::vector<double> points;
+    while (std::getline(cells, cell, ','))
+      points.push_back(std::stod(cell));
+    rows[name] = points;
+  }
+  return rows;
+}
+
+// Task `task`'s part of a feedback text.
+std::string section(const std::string& feedback, int task) {
+  const std::string heading = "==> Task " + std::to_string(task) + ":";
+  const auto start = feedback.find(heading);
+  if (start == std::string::npos) return "";
+  const auto end = feedback.find("==> ", start + heading.size());
+  return feedback.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+}  // namespace
+
+TEST_CASE("One batch grades the starter code, the solutions, the mutants and the hostile "
+          "submissions as each must be graded",
+          "[batch]") {
+  fs::remove_all(batch);
+  fs::create_directories(submissions);
+  std::vector<Expectation> expected;
+  fs::copy(kit / "tasks", submissions / "starter", fs::copy_options::recursive);
+  expected.push_back(all("starter", "the starter code", Points::none));
+  fs::copy(kit / "solutions", submissions / "solutions", fs::copy_options::recursive);
+  expected.push_back(all("solutions", "the solutions", Points::full));
+  for (const auto& entry : fs::directory_iterator(kit / "tests" / "mutants"))
+    if (entry.path().extension() == ".patch") expected.push_back(mutant(entry.path()));
+  for (const auto& entry : fs::directory_iterator(kit / "tests" / "grader" / "hostile"))
+    if (entry.is_directory()) expected.push_back(hostile(entry.path()));
+
+  std::map<std::string, std::string> before;
+  std::vector<std::string> argv = {SPRINGLAB_GRADE, "--out", (batch / "results").string(),
+                                   "--work", (batch / "work").string()};
+  for (const Expectation& e : expected) {
+    before[e.name] = snapshot(submissions / e.name);
+    argv.push_back((submissions / e.name).string());
+  }
+  const std::string kit_before = snapshot(kit / "solutions") + snapshot(kit / "tasks");
+  const auto start = std::chrono::steady_clock::now();
+  const auto [status, output] = run(argv);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::cout << "grader.batch: " << expected.size() << " submissions graded in " << seconds
+            << " s of wall time (" << seconds / double(expected.size())
+            << " s each), the reference's times measured once per build\n";
+  INFO(output);
+  REQUIRE(status == 0);
+
+  const auto rows = read_gradebook(batch / "results" / "gradebook.csv");
+  REQUIRE(rows.count("solutions") == 1);
+  // The most each task gives: the sum of its tests' max_score in the solutions' results.
+  std::vector<double> most(6, 0.0);
+  const auto solutions = nlohmann::json::parse(read(batch / "results" / "solutions" / "results.json"));
+  for (const auto& test : solutions["tests"])
+    most[std::size_t(test["tags"][0].get<std::string>()[4] - '0')] += test["max_score"].get<double>();
+  for (int task = 1; task <= 5; ++task)
+    REQUIRE(most[std::size_t(task)] > 0);
+
+  for (const Expectation& e : expected) {
+    INFO(e.name << ": " << e.what);
+    REQUIRE(rows.count(e.name) == 1);
+    const std::string feedback = read(batch / "results" / e.name / "feedback.txt");
+    for (const auto& [task, want] : e.points) {
+      const double got = rows.at(e.name)[std::size_t(task - 1)];
+      const double full = most[std::size_t(task)];
+      INFO("task " << task << ": " << got << " of " << full << " points\n" << section(feedback, task));
+      switch (want) {
+        case Points::full: CHECK(got == full); break;
+        case Points::none: CHECK(got == 0.0); break;
+        case Points::some: CHECK((got > 0.0 && got < full)); break;
+        case Points::less: CHECK(got < full); break;
+      }
+    }
+    for (const auto& [task, pattern] : e.feedback) {
+      INFO("task " << task << " feedback must match /" << pattern << "/:\n" << section(feedback, task));
+      CHECK(std::regex_search(section(feedback, task), std::regex(pattern)));
+    }
+    CHECK(snapshot(submissions / e.name) == before[e.name]);
+  }
+
+  // The starter code fails every test by saying what to write.
+  const auto starter = nlohmann::json::parse(read(batch / "results" / "starter" / "results.json"));
+  for (const auto& test : starter["tests"]) {
+    INFO(test["name"].get<std::string>() << ": " << test["output"].get<std::string>());
+    CHECK(test["status"] == "failed");
+    CHECK(test["output"].get<std::string>().find("is not implemented yet") != std::string::npos);
+  }
+  CHECK(snapshot(kit / "solutions") + snapshot(kit / "tasks") == kit_before);
+  for (const auto& entry : fs::recursive_directory_iterator(batch / "results"))
+    if (entry.is_regular_file()) {
+      INFO(entry.path());
+      CHECK(entry.file_size() < (1u << 20));
+    }
+}

@@ -1,0 +1,99 @@
+// Reports: what a student's output can put in them is made printable, the formats parse back,
+// and the gradebook has exactly its header.
+#include "reports.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+using namespace springlab::grader;
+
+namespace {
+
+// A submission with one passing and one failing test in task 1 and a task 2 that did not build.
+struct Example {
+  std::vector<TestInfo> tests = {{"Spring: one", {"task1", "spring"}, 1, 1, 2.0},
+                                 {"Spring: two", {"task1"}, 1, 2, 1.0},
+                                 {"Grid: one", {"task2"}, 2, 1, 1.5}};
+  SubmissionResult result;
+  Example(const std::string& name, const std::string& printed) {
+    result.submission.name = name;
+    TaskResult& one = result.tasks[1];
+    one.task = 1;
+    one.tests = {{&tests[0], true, "", "", 0, 0.1, 0.2},
+                 {&tests[1], false, "a <bad> & \"quoted\" failure", printed, printed.size(), 0.1, 0}};
+    TaskResult& two = result.tasks[2];
+    two.task = 2;
+    two.problem = "does not compile:\nspring_forces.cpp:3: error: expected ';'";
+    two.tests = {{&tests[2], false, "does not compile:", "", 0, 0, 0}};
+  }
+};
+
+}  // namespace
+
+TEST_CASE("Printable text: no control characters, valid UTF-8, newlines and tabs kept",
+          "[reports]") {
+  CHECK(printable("a\x1b[2Jb\tc\nd\r") == "a?[2Jb\tc\nd?");
+  CHECK(printable("ℓ0 = √2 m") == "ℓ0 = √2 m");
+  CHECK(printable("bad \xff\xfe and cut \xe2\x88") == "bad ?? and cut ??");
+}
+
+TEST_CASE("Points are written as people write them", "[reports]") {
+  CHECK(points_text(12) == "12");
+  CHECK(points_text(2.5) == "2.5");
+  CHECK(points_text(1.0 / 3.0) == "0.33");
+}
+
+TEST_CASE("The gradebook: the exact header, points per task and in total, names quoted when "
+          "needed",
+          "[reports]") {
+  const Example plain("alice", ""), odd("o'brien, \"bob\"", "");
+  CHECK(gradebook({plain.result, odd.result}) ==
+        "submission,task1,task2,task3,task4,task5,total\n"
+        "alice,2,0,,,,2\n"
+        "\"o'brien, \"\"bob\"\"\",2,0,,,,2\n");
+}
+
+TEST_CASE("results.json: Gradescope's fields for every test, and what the code printed made safe",
+          "[reports]") {
+  const Example e("alice", "printed \x1b[31m red \xff\n");
+  const auto json = nlohmann::json::parse(results_json(e.result, 12.4));
+  CHECK(json["score"] == 2.0);
+  CHECK(json["execution_time"] == 12);
+  REQUIRE(json["tests"].size() == 3);
+  const auto& failed = json["tests"][1];
+  CHECK(failed["name"] == "Task 1: Spring: two");
+  CHECK(failed["number"] == "1.2");
+  CHECK(failed["status"] == "failed");
+  CHECK(failed["score"] == 0.0);
+  CHECK(failed["max_score"] == 1.0);
+  CHECK(failed["visibility"] == "visible");
+  CHECK(failed["tags"] == nlohmann::json::array({"task1"}));
+  CHECK_THAT(failed["output"].get<std::string>(),
+             Catch::Contains("your code printed 20 bytes:\n| printed ?[31m red ?"));
+  CHECK(json["tests"][0]["tags"] == nlohmann::json::array({"task1", "spring"}));
+  CHECK_THAT(json["tests"][2]["output"].get<std::string>(), Catch::Contains("expected ';'"));
+}
+
+TEST_CASE("JUnit: one testcase per test, failures escaped", "[reports]") {
+  const Example e("alice", "<system-out>");
+  const std::string xml = junit_report(e.result, 1);
+  CHECK_THAT(xml, Catch::Contains("<testsuite name=\"task1\" tests=\"2\" failures=\"1\">"));
+  CHECK_THAT(xml, Catch::Contains("message=\"a &lt;bad&gt; &amp; &quot;quoted&quot; failure\""));
+  CHECK(xml.find("<system-out>") == std::string::npos);
+}
+
+TEST_CASE("Feedback: one line per test, the failure explained, and a count in points",
+          "[reports]") {
+  Kit kit;
+  kit.task_files = {{1, {"task1_two_masses/spring_damper.cpp"}},
+                    {2, {"task2_four_masses/spring_forces.cpp"}}};
+  const Example e("alice", "");
+  const std::string text = feedback(e.result, kit);
+  CHECK_THAT(text, Catch::Contains("==> Task 1: the code in tasks/task1_two_masses/ (handout "
+                                   "section 1)\n  Spring: one ... pass\n  Spring: two ... FAIL\n"
+                                   "        a <bad> & \"quoted\" failure\n"));
+  CHECK_THAT(text, Catch::Contains("1 of 2 tests pass (2 of 3 points); fix the first FAIL"));
+  CHECK_THAT(text, Catch::Contains("  does not compile:\n  spring_forces.cpp:3: error"));
+  CHECK_THAT(text, Catch::Contains("==> Summary: 2 of 4.5 points\n  task 1: 1 of 2 tests pass"));
+  CHECK_THAT(text, Catch::Contains("  task 2: does not compile (0 of 1.5 points)"));
+}

@@ -1,0 +1,86 @@
+// Finding a submission's files in any of its three shapes, and the private copy that is compiled.
+#include "submission.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+using namespace springlab::grader;
+
+namespace {
+
+struct Folders {
+  fs::path top = fs::temp_directory_path() / "springlab-submission-test";
+  Kit kit;
+  Folders() {
+    fs::remove_all(top);
+    kit.starter = top / "kit" / "tasks";
+    kit.task_files = {{1, {"task1_two_masses/explicit_euler.cpp",
+                           "task1_two_masses/spring_damper.cpp"}},
+                      {2, {"task2_four_masses/spring_forces.cpp"}}};
+    write(kit.starter / "task1_two_masses" / "explicit_euler.cpp", "starter euler");
+    write(kit.starter / "task1_two_masses" / "spring_damper.cpp", "starter spring");
+    write(kit.starter / "task2_four_masses" / "spring_forces.cpp", "starter forces");
+  }
+  static void write(const fs::path& file, const std::string& text) {
+    fs::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+  }
+  static std::string read(const fs::path& file) {
+    std::ifstream in(file);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }
+};
+
+}  // namespace
+
+TEST_CASE("The three shapes of a submission", "[submission]") {
+  Folders f;
+  f.write(f.top / "alice" / "task1_two_masses" / "spring_damper.cpp", "alice");
+  f.write(f.top / "bob-repo" / "tasks" / "task2_four_masses" / "spring_forces.cpp", "bob");
+  f.write(f.top / "carol" / "spring_forces.cpp", "carol");
+  const Submission alice = find_submission(f.top / "alice", f.kit);
+  CHECK(alice.name == "alice");
+  CHECK(alice.layout == Layout::tasks_folder);
+  CHECK(alice.tasks.at(1).found == std::vector<std::string>{"spring_damper.cpp"});
+  CHECK(alice.tasks.at(1).missing == std::vector<std::string>{"explicit_euler.cpp"});
+  const Submission bob = find_submission(f.top / "bob-repo", f.kit);
+  CHECK(bob.layout == Layout::repository);
+  CHECK(bob.tasks.at(2).found == std::vector<std::string>{"spring_forces.cpp"});
+  const Submission carol = find_submission(f.top / "carol", f.kit);
+  CHECK(carol.layout == Layout::loose_files);
+  CHECK(carol.tasks.at(2).found == std::vector<std::string>{"spring_forces.cpp"});
+  CHECK(carol.tasks.at(1).found.empty());
+  CHECK_THROWS_AS(find_submission(f.top / "nobody", f.kit), UsageError);
+}
+
+TEST_CASE("The private copy: the task's files, the starter code for missing ones, no links",
+          "[submission]") {
+  Folders f;
+  f.write(f.top / "alice" / "task1_two_masses" / "spring_damper.cpp", "alice's spring");
+  f.write(f.top / "alice" / "task1_two_masses" / "helpers.hpp", "alice's helper");
+  fs::create_symlink(f.kit.starter / "task1_two_masses" / "spring_damper.cpp",
+                     f.top / "alice" / "task1_two_masses" / "linked.hpp");
+  const Submission alice = find_submission(f.top / "alice", f.kit);
+  const TaskCopy copy = copy_task(alice, 1, f.kit, f.top / "work");
+  CHECK(copy.folder == f.top / "work" / "tasks" / "task1_two_masses");
+  CHECK(f.read(copy.folder / "spring_damper.cpp") == "alice's spring");
+  CHECK(f.read(copy.folder / "explicit_euler.cpp") == "starter euler");
+  CHECK(f.read(copy.folder / "helpers.hpp") == "alice's helper");
+  CHECK_FALSE(fs::exists(copy.folder / "linked.hpp"));
+  REQUIRE(copy.notes.size() == 2);
+  CHECK_THAT(copy.notes[0], Catch::Contains("linked.hpp is a link"));
+  CHECK_THAT(copy.notes[1], Catch::Contains("explicit_euler.cpp is missing: graded as the starter"));
+}
+
+TEST_CASE("Copies hold the same contents exactly when their files are the same", "[submission]") {
+  Folders f;
+  f.write(f.top / "a" / "spring_forces.cpp", "same");
+  f.write(f.top / "b" / "task2_four_masses" / "spring_forces.cpp", "same");
+  f.write(f.top / "c" / "spring_forces.cpp", "other");
+  const auto contents = [&](const std::string& name) {
+    return copy_task(find_submission(f.top / name, f.kit), 2, f.kit, f.top / "work" / name).contents;
+  };
+  CHECK(contents("a") == contents("b"));
+  CHECK(contents("a") != contents("c"));
+}

@@ -1,0 +1,114 @@
+// Verdicts: only a record carrying the run's secret, followed by a clean exit, counts; every
+// other ending is a failure with its reason.
+#include "sanitizer.hpp"
+#include "verdict.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <csignal>
+
+using namespace springlab::grader;
+
+namespace {
+
+const std::string secret = "0123456789abcdef0123456789abcdef";
+
+std::string record(const std::string& kind, const std::string& payload,
+                   const std::string& key = secret) {
+  return key + " " + kind + " " + std::to_string(payload.size()) + "\n" + payload;
+}
+
+Outcome ended(int code, const std::string& records, const std::string& output = "") {
+  Outcome o;
+  o.exited = true;
+  o.exit_code = code;
+  o.records = records;
+  o.output = output;
+  o.output_bytes = output.size();
+  return o;
+}
+
+RunVerdict verdict_of(const Outcome& o) {
+  return judge(o, secret, Limits{}, {"10 times the reference's time, at least 2 s"});
+}
+
+}  // namespace
+
+TEST_CASE("Secrets: 32 hex digits, a new one each time", "[verdict]") {
+  const std::string a = new_secret(), b = new_secret();
+  CHECK(a.size() == 32);
+  CHECK(a.find_first_not_of("0123456789abcdef") == std::string::npos);
+  CHECK(a != b);
+}
+
+TEST_CASE("A verdict with the secret and a clean exit counts", "[verdict]") {
+  const std::string loaded = record("loaded", "");
+  CHECK(verdict_of(ended(0, loaded + record("verdict", "pass 12 0\n"))).passed);
+  const RunVerdict failed = verdict_of(ended(0, loaded + record("verdict", "fail 3 1\nwhy")));
+  CHECK_FALSE(failed.passed);
+  CHECK(failed.message == "why");
+}
+
+TEST_CASE("Records without the secret, or a verdict followed by anything but exit 0, never pass",
+          "[verdict]") {
+  const std::string forged = record("verdict", "pass 12 0\n", std::string(32, '0'));
+  const RunVerdict v = verdict_of(ended(0, record("loaded", "") + forged,
+                                        "8 of 8 tests pass.\nAll tests passed\n"));
+  CHECK_FALSE(v.passed);
+  CHECK_THAT(v.message, Catch::Contains("exited before the test finished (exit status 0)"));
+  CHECK_FALSE(verdict_of(ended(1, record("verdict", "pass 12 0\n"))).passed);
+  // Garbage before the harness's records does not hide them, nor make them count more.
+  CHECK(verdict_of(ended(0, "junk " + secret + " nonsense\n" + record("verdict", "pass 1 0\n")))
+            .passed);
+}
+
+TEST_CASE("Every other ending is a failure that says why", "[verdict]") {
+  Outcome crashed;
+  crashed.signal = SIGSEGV;
+  CHECK_THAT(verdict_of(crashed).message, Catch::StartsWith("crashed: segmentation fault"));
+  CHECK_THAT(verdict_of(ended(0, "")).message,
+             Catch::Contains("ended while your code was being loaded"));
+  CHECK_THAT(verdict_of(ended(0, record("forbidden", "59"))).message,
+             Catch::Contains("(" + system_call_name(59) + ")"));
+  CHECK_THAT(verdict_of(ended(0, record("error", "cannot load the code: x"))).message,
+             Catch::Contains("the test could not run: cannot load the code: x"));
+  Outcome slow;
+  slow.stopped = Stop::wall_time;
+  slow.wall_seconds = 2.04;
+  CHECK_THAT(verdict_of(slow).message,
+             Catch::Contains("timed out: stopped after 2 s (the limit is 10 times the reference's "
+                             "time, at least 2 s"));
+  Outcome flood;
+  flood.stopped = Stop::output;
+  CHECK_THAT(verdict_of(flood).message, Catch::Contains("printed more than 8 MB"));
+}
+
+TEST_CASE("Sanitizer reports become sentences naming the student's function and line",
+          "[verdict][sanitizer]") {
+  const std::string heap =
+      "==1==ERROR: AddressSanitizer: heap-buffer-overflow on address 0x6 at pc 0x5 bp 0x7\n"
+      "WRITE of size 8 at 0x6 thread T0\n"
+      "    #0 0x7f in springlab::submission::accumulate_spring_forces(std::vector<springlab::"
+      "Spring, std::allocator<springlab::Spring> > const&, Eigen::Matrix<double, 2, -1, 0, 2, -1> "
+      "const&) /w/submissions/1-a/tasks/task2_four_masses/spring_forces.cpp:13\n"
+      "    #1 0x5a in main /k/tests/grader/harness/main.cpp:9\n"
+      "0x6 is located 0 bytes to the right of 64-byte region [0x6,0x6)\n";
+  CHECK(explain_sanitizer_report(heap) ==
+        "memory error (heap-buffer-overflow): your code writes 8 bytes just past the end of an "
+        "array (a loop one step too far, or an index out of range?) in accumulate_spring_forces "
+        "(tasks/task2_four_masses/spring_forces.cpp, line 13)");
+  const std::string scope =
+      "==1==ERROR: AddressSanitizer: stack-use-after-scope on address 0x7\n"
+      "READ of size 8 at 0x7 thread T0\n"
+      "    #0 0x7f in springlab::submission::f() /w/tasks/task2_four_masses/a.cpp:7:3\n";
+  CHECK_THAT(explain_sanitizer_report(scope),
+             Catch::StartsWith("memory error (stack-use-after-scope): your code reads 8 bytes of "
+                               "a value whose lifetime had ended in f "
+                               "(tasks/task2_four_masses/a.cpp, line 7)") &&
+                 Catch::Contains("Vec2 x = a + b;"));
+  CHECK(explain_sanitizer_report("/w/tasks/task1_two_masses/a.cpp:5:12: runtime error: signed "
+                                 "integer overflow: 2147483647 + 1\n") ==
+        "undefined behaviour (tasks/task1_two_masses/a.cpp, line 5): signed integer overflow: "
+        "2147483647 + 1");
+  CHECK(explain_sanitizer_report("nothing wrong here\n").empty());
+}
