@@ -52,8 +52,7 @@ int run_test(const std::string& name, const char* library) {
     end_with("error", "the test spec selected " + std::to_string(outcome.cases_run) + " tests");
   end_with("verdict", std::string(outcome.passed() ? "pass " : "fail ") +
                           std::to_string(outcome.assertions_passed) + " " +
-                          std::to_string(outcome.assertions_failed) + "\n" +
-                          outcome.first_failure);
+                          std::to_string(outcome.assertions_failed) + "\n" + outcome.first_failure);
 }
 
 }  // namespace
@@ -64,6 +63,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc == 4 && std::strcmp(argv[1], "--run") == 0) return run_test(argv[2], argv[3]);
-  std::cerr << "usage: springlab-grade-harness --list | --run NAME LIBRARY (springlab-grade runs it)\n";
+  std::cerr
+      << "usage: springlab-grade-harness --list | --run NAME LIBRARY (springlab-grade runs it)\n";
   return 2;
 }

@@ -30,8 +30,8 @@ std::string explain(const Catch::AssertionStats& stats) {
   }
   std::string file = result.getSourceInfo().file;
   file = file.substr(std::min(file.size(), file.rfind("tests/")));  // as the kit names it
-  std::string text = file + ":" + std::to_string(result.getSourceInfo().line) + ": " +
-                     result.getExpression();
+  std::string text =
+      file + ":" + std::to_string(result.getSourceInfo().line) + ": " + result.getExpression();
   if (result.hasExpandedExpression()) text += "\nwith values: " + result.getExpandedExpression();
   for (const Catch::MessageInfo& message : stats.infoMessages)
     if (message.message != result.getMessage()) text += "\n" + message.message;

@@ -18,15 +18,39 @@ namespace {
 // What a Catch2 test, Eigen, the C++ runtime and the sanitizers' runtime use while running and
 // while reporting an error (found with strace on every kit test, plain and sanitized).
 constexpr const char* allowed[] = {
-    "read", "readv", "pread64", "write", "writev", "close", "lseek", "fstat", "newfstatat", "stat",
-    "lstat", "statx", "access", "faccessat", "faccessat2", "readlink", "readlinkat", "getcwd",
-    "getdents64", "fcntl", "dup", "dup2", "dup3", "mmap", "munmap", "mprotect", "mremap", "brk",
-    "madvise", "mincore", "rt_sigaction", "rt_sigprocmask", "rt_sigreturn", "sigaltstack",
-    "getpid", "gettid", "getppid", "getuid", "geteuid", "getgid", "getegid", "getrlimit",
-    "getrusage", "sched_getaffinity", "sched_yield", "uname", "sysinfo", "exit", "exit_group",
-    "futex", "clock_gettime", "clock_getres", "gettimeofday", "time", "nanosleep",
-    "clock_nanosleep", "getrandom", "prctl", "arch_prctl", "set_robust_list", "rseq",
-    "restart_syscall", "poll", "ppoll", "pipe", "pipe2",
+    "read",          "readv",
+    "pread64",       "write",
+    "writev",        "close",
+    "lseek",         "fstat",
+    "newfstatat",    "stat",
+    "lstat",         "statx",
+    "access",        "faccessat",
+    "faccessat2",    "readlink",
+    "readlinkat",    "getcwd",
+    "getdents64",    "fcntl",
+    "dup",           "dup2",
+    "dup3",          "mmap",
+    "munmap",        "mprotect",
+    "mremap",        "brk",
+    "madvise",       "mincore",
+    "rt_sigaction",  "rt_sigprocmask",
+    "rt_sigreturn",  "sigaltstack",
+    "getpid",        "gettid",
+    "getppid",       "getuid",
+    "geteuid",       "getgid",
+    "getegid",       "getrlimit",
+    "getrusage",     "sched_getaffinity",
+    "sched_yield",   "uname",
+    "sysinfo",       "exit",
+    "exit_group",    "futex",
+    "clock_gettime", "clock_getres",
+    "gettimeofday",  "time",
+    "nanosleep",     "clock_nanosleep",
+    "getrandom",     "prctl",
+    "arch_prctl",    "set_robust_list",
+    "rseq",          "restart_syscall",
+    "poll",          "ppoll",
+    "pipe",          "pipe2",
     "seccomp"};  // more filters can only forbid more: forbid_new_code() adds one
 
 void report_and_end(int, siginfo_t* info, void*) {
@@ -75,9 +99,9 @@ bool forbid_what_tests_never_need() {
   for (const int flag : {O_CREAT, O_TRUNC, O_APPEND})
     for (const char* call : {"open", "openat"}) {
       const unsigned flags_arg = call[4] == 'a' ? 2 : 1;
-      ok = ok && add(writes, refuse, call, 1,
-                     SCMP_CMP(flags_arg, SCMP_CMP_MASKED_EQ, scmp_datum_t(flag),
-                              scmp_datum_t(flag)));
+      ok = ok &&
+           add(writes, refuse, call, 1,
+               SCMP_CMP(flags_arg, SCMP_CMP_MASKED_EQ, scmp_datum_t(flag), scmp_datum_t(flag)));
     }
   ok = ok && add(writes, refuse, "creat") && add(writes, refuse, "openat2");
 

@@ -110,8 +110,8 @@ std::vector<std::string> symbol_problems(const std::string& nm_output) {
                           name.rfind("springlab::grading::", 0) == 0))
       add("it calls " + name.substr(0, name.find('(')) +
           ", which belongs to the kit's own code: write the function yourself");
-    else if (!defined && (name == "dlopen" || name == "dlsym" || name == "dlmopen" ||
-                          name == "dlvsym"))
+    else if (!defined &&
+             (name == "dlopen" || name == "dlsym" || name == "dlmopen" || name == "dlvsym"))
       add("it loads code at run time (" + name + "): a submission runs only its own code");
   }
   return problems;

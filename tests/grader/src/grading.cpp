@@ -81,7 +81,8 @@ double TaskResult::max_points() const {
 }
 
 int TaskResult::passed() const {
-  return int(std::count_if(tests.begin(), tests.end(), [](const TestResult& t) { return t.passed; }));
+  return int(
+      std::count_if(tests.begin(), tests.end(), [](const TestResult& t) { return t.passed; }));
 }
 
 double SubmissionResult::points() const {
@@ -101,8 +102,8 @@ double SubmissionResult::max_points() const {
 // One task's files as one or more submissions hold them, from copy to verdicts.
 struct Grader::TaskBuild {
   int task = 0;
-  fs::path copy;    // the private copy of the task's files
-  fs::path folder;  // its objects and libraries
+  fs::path copy;                     // the private copy of the task's files
+  fs::path folder;                   // its objects and libraries
   std::vector<std::string> sources;  // the kit's files of the task, compiled
   TaskResult result;
   std::vector<int> passed_plain;  // tests waiting for the sanitized library
@@ -127,8 +128,8 @@ Grader::Grader(const Kit& kit, const std::vector<TestInfo>& tests, Settings sett
 
 std::string Grader::time_limit_text() const {
   std::ostringstream text;
-  text << settings_.time_factor << " times the reference's time, at least "
-       << settings_.time_floor << " s";
+  text << settings_.time_factor << " times the reference's time, at least " << settings_.time_floor
+       << " s";
   return text.str();
 }
 
@@ -198,10 +199,9 @@ class Grader::Pipeline {
       const fs::path object = b->object(source, v);
       Command c;
       c.argv = v.compile;
-      for (const std::string& arg : {std::string("-MD"), std::string("-MF"),
-                                     object.string() + ".d", std::string("-c"),
-                                     (b->copy / source).string(), std::string("-o"),
-                                     object.string()})
+      for (const std::string& arg :
+           {std::string("-MD"), std::string("-MF"), object.string() + ".d", std::string("-c"),
+            (b->copy / source).string(), std::string("-o"), object.string()})
         c.argv.push_back(arg);
       c.env = plain_environment();
       c.directory = b->copy.string();
@@ -221,7 +221,8 @@ class Grader::Pipeline {
   // What the code included (from the dependency files) and what its objects name (from nm).
   void check(const std::shared_ptr<TaskBuild>& b) {
     for (const std::string& source : b->sources)
-      for (const fs::path& file : read_dependencies(b->object(source, kit_.plain).string() + ".d")) {
+      for (const fs::path& file :
+           read_dependencies(b->object(source, kit_.plain).string() + ".d")) {
         const std::string problem = include_problem(file, b->copy, kit_.pch, kit_);
         if (!problem.empty()) return fail_all(b, "not graded: " + source + ": " + problem);
       }
@@ -336,8 +337,8 @@ class Grader::Pipeline {
       const RunVerdict v = judge(o, secret, limits, limits_text_);
       if (!v.passed) {
         t.passed = false;
-        t.message = "passes, but not with the sanitizers, which check every memory access: " +
-                    v.message;
+        t.message =
+            "passes, but not with the sanitizers, which check every memory access: " + v.message;
         t.printed = o.output;
         t.printed_bytes = o.output_bytes;
       }
@@ -371,8 +372,8 @@ std::vector<SubmissionResult> Grader::run(
 
   for (std::size_t i = 0; i < submissions.size(); ++i) {
     results[i].submission = submissions[i];
-    const fs::path copies = settings_.work / "submissions" / (std::to_string(i + 1) + "-" +
-                                                             submissions[i].name);
+    const fs::path copies =
+        settings_.work / "submissions" / (std::to_string(i + 1) + "-" + submissions[i].name);
     for (const int task : settings_.tasks) {
       TaskCopy copy = copy_task(submissions[i], task, kit_, copies);
       std::shared_ptr<TaskBuild>& b = builds[{task, copy.contents}];
@@ -428,7 +429,8 @@ void Grader::calibrate(const fs::path& cache) {
   Submission reference = find_submission(kit_.solutions, kit_);
   reference.name = "reference";
   // Both runs of every test, however the plain one ends: each variant needs its time.
-  const std::vector<SubmissionResult> results = run({reference}, true, [](auto&, int) {}, [](auto&) {});
+  const std::vector<SubmissionResult> results = run(
+      {reference}, true, [](auto&, int) {}, [](auto&) {});
   settings_ = saved;
   std::string failures;
   for (const auto& [task, result] : results.front().tasks)
@@ -441,9 +443,10 @@ void Grader::calibrate(const fs::path& cache) {
         calibration_["sanitized"][t.test->name] = t.sanitized_seconds;
       }
   if (!failures.empty())
-    throw std::runtime_error("the kit's own solutions fail tests, so nothing can be graded "
-                             "fairly (rebuild the kit; if it persists, the kit is broken):" +
-                             failures);
+    throw std::runtime_error(
+        "the kit's own solutions fail tests, so nothing can be graded "
+        "fairly (rebuild the kit; if it persists, the kit is broken):" +
+        failures);
   std::ofstream out(cache);
   out << signature << "---\n";
   for (const auto& [name, variant] : calibration_)

@@ -17,11 +17,11 @@
 namespace springlab::grader {
 
 struct Settings {
-  fs::path work;              ///< private copies, objects and libraries (emptied first)
-  int jobs = 2;               ///< processes at once
-  double time_factor = 10.0;  ///< a test may take this many times the reference's time...
-  double time_floor = 2.0;    ///< ...but never less than this, s
-  long memory_mb = 1024;      ///< MB of memory per test process
+  fs::path work;                        ///< private copies, objects and libraries (emptied first)
+  int jobs = 2;                         ///< processes at once
+  double time_factor = 10.0;            ///< a test may take this many times the reference's time...
+  double time_floor = 2.0;              ///< ...but never less than this, s
+  long memory_mb = 1024;                ///< MB of memory per test process
   std::size_t output_kept = 64 * 1024;  ///< bytes of a test's output kept
   std::size_t output_limit = 8u << 20;  ///< bytes: printing more stops the test
   std::vector<int> tasks{1, 2, 3, 4, 5};  ///< the tasks graded
@@ -30,8 +30,8 @@ struct Settings {
 struct TestResult {
   const TestInfo* test = nullptr;
   bool passed = false;
-  std::string message;        ///< why it failed, for the student
-  std::string printed;        ///< what the code printed in the deciding run (the kept part)
+  std::string message;  ///< why it failed, for the student
+  std::string printed;  ///< what the code printed in the deciding run (the kept part)
   std::size_t printed_bytes = 0;
   double seconds = 0.0;            ///< the plain run's wall time
   double sanitized_seconds = 0.0;  ///< the sanitized run's, when it ran
@@ -86,9 +86,10 @@ class Grader {
   Calibration calibration_;
 
   Limits test_limits(const TestInfo& test, const Variant& variant) const;
-  std::vector<SubmissionResult> run(const std::vector<Submission>& submissions, bool generous,
-                                    const std::function<void(const SubmissionResult&, int)>& task_done,
-                                    const std::function<void(const SubmissionResult&)>& done);
+  std::vector<SubmissionResult> run(
+      const std::vector<Submission>& submissions, bool generous,
+      const std::function<void(const SubmissionResult&, int)>& task_done,
+      const std::function<void(const SubmissionResult&)>& done);
 };
 
 }  // namespace springlab::grader

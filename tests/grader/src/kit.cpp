@@ -78,8 +78,8 @@ Kit read_kit(const fs::path& file) {
   const toml::table* reference = kit["reference"].as_table();
   if (reference == nullptr) read.fail("reference");
   for (const auto& [name, object] : *reference)
-    result.reference_objects[std::string(name.str())] =
-        read.text(toml::node_view<const toml::node>(object), "reference." + std::string(name.str()));
+    result.reference_objects[std::string(name.str())] = read.text(
+        toml::node_view<const toml::node>(object), "reference." + std::string(name.str()));
   return result;
 }
 

@@ -1,5 +1,6 @@
-// The kit as its build describes it to the grader (kit.toml, written by tests/grader/CMakeLists.txt):
-// where the harness, the reference objects and the headers are, and how submission code is built.
+// The kit as its build describes it to the grader (kit.toml, written by
+// tests/grader/CMakeLists.txt): where the harness, the reference objects and the headers are, and
+// how submission code is built.
 #pragma once
 
 #include <filesystem>
@@ -34,7 +35,7 @@ struct Kit {
   std::map<int, std::vector<std::string>> task_files;
   /// Per solution file (same names): its reference object, in the submission namespace.
   std::map<std::string, fs::path> reference_objects;
-  std::map<int, fs::path> tables;  ///< per task N: the table with N as the student's task
+  std::map<int, fs::path> tables;     ///< per task N: the table with N as the student's task
   std::vector<fs::path> link_always;  ///< the library's entry point and the kit's task support
 
   /// The folder of task n, e.g. "task1_two_masses".

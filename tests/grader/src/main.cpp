@@ -141,9 +141,9 @@ int grade(const Options& options) {
     } else if (submissions.size() == 1) {
       std::cout << feedback(r, kit);
     } else {
-      std::cout << "[" << finished << "/" << submissions.size() << "] " << printable(r.submission.name)
-                << ": " << points_text(r.points()) << " of " << points_text(r.max_points())
-                << " points" << std::endl;
+      std::cout << "[" << finished << "/" << submissions.size() << "] "
+                << printable(r.submission.name) << ": " << points_text(r.points()) << " of "
+                << points_text(r.max_points()) << " points" << std::endl;
     }
   };
   const std::vector<SubmissionResult> results =
@@ -160,8 +160,9 @@ int grade(const Options& options) {
 int main(int argc, char** argv) {
   Options options;
   options.settings.jobs = std::max(1, int(std::thread::hardware_concurrency()));
-  CLI::App app("springlab-grade: grades submissions of the springlab tasks, each test in a "
-               "process of its own under limits, plain and with the sanitizers");
+  CLI::App app(
+      "springlab-grade: grades submissions of the springlab tasks, each test in a "
+      "process of its own under limits, plain and with the sanitizers");
   app.add_option("submission", options.submissions,
                  "a copy of tasks/, a student repository (its tasks/ is used) or a folder of "
                  "the loose .cpp files")

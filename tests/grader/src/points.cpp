@@ -25,7 +25,8 @@ std::vector<TestInfo> parse_test_list(const std::string& listing) {
       if (tag.empty() || tag.front() != '[') continue;
       test.tags.push_back(tag.substr(1));
       const std::string& t = test.tags.back();
-      if (t.size() == 5 && t.rfind("task", 0) == 0 && t[4] >= '1' && t[4] <= '5') test.task = t[4] - '0';
+      if (t.size() == 5 && t.rfind("task", 0) == 0 && t[4] >= '1' && t[4] <= '5')
+        test.task = t[4] - '0';
     }
     if (test.task == 0) continue;
     test.number = ++counts[test.task];
@@ -64,9 +65,11 @@ void assign_points(std::vector<TestInfo>& tests, const std::filesystem::path& fi
     int task = 0;
     if (task_key.size() == 5 && task_key.rfind("task", 0) == 0) task = task_key[4] - '0';
     if (section == nullptr || task < 1 || task > 5)
-      throw UsageError(file.string() + ": [" + task_key + "]: allowed sections are [task1] ... [task5]");
+      throw UsageError(file.string() + ": [" + task_key +
+                       "]: allowed sections are [task1] ... [task5]");
     double fallback = 1.0;
-    if (const toml::node* d = section->get("default")) fallback = points_of(*d, task_key + ".default");
+    if (const toml::node* d = section->get("default"))
+      fallback = points_of(*d, task_key + ".default");
     for (TestInfo& test : tests)
       if (test.task == task) test.points = fallback;
     for (const auto& [name_key, value] : *section) {

@@ -51,7 +51,8 @@ struct Pipe {
 
 Pipe make_pipe() {
   int ends[2];
-  if (::pipe2(ends, O_CLOEXEC) != 0) throw std::system_error(errno, std::generic_category(), "pipe");
+  if (::pipe2(ends, O_CLOEXEC) != 0)
+    throw std::system_error(errno, std::generic_category(), "pipe");
   return {Fd(ends[0]), Fd(ends[1])};
 }
 
@@ -204,14 +205,14 @@ void ProcessPool::Impl::read_from(Running& r, bool drain) {
       }
       const auto size = std::size_t(n);
       if (fd == &r.out) {
-        const std::size_t room = limits.output_kept - std::min(limits.output_kept,
-                                                               r.outcome.output.size());
+        const std::size_t room =
+            limits.output_kept - std::min(limits.output_kept, r.outcome.output.size());
         r.outcome.output.append(buffer, std::min(room, size));
         r.outcome.output_bytes += size;
         if (r.outcome.output_bytes > limits.output_limit) stop(r, Stop::output);
       } else if (r.outcome.records.size() < limits.records_limit) {
-        r.outcome.records.append(buffer, std::min(limits.records_limit - r.outcome.records.size(),
-                                                  size));
+        r.outcome.records.append(buffer,
+                                 std::min(limits.records_limit - r.outcome.records.size(), size));
       }
       if (!drain) break;  // one buffer per turn, so that a flood cannot starve the others
     }

@@ -13,14 +13,14 @@
 namespace springlab::grader {
 
 struct Limits {
-  double wall_seconds = 60.0;             ///< s of real time, then the group is killed
-  double cpu_seconds = 60.0;              ///< s of processor time (RLIMIT_CPU, whole seconds)
+  double wall_seconds = 60.0;            ///< s of real time, then the group is killed
+  double cpu_seconds = 60.0;             ///< s of processor time (RLIMIT_CPU, whole seconds)
   long address_space_mb = 4096;          ///< MB (RLIMIT_AS); 0: none (sanitizers need terabytes)
-  long resident_mb = 0;                   ///< MB of resident memory, watched; 0: not watched
-  long file_size_mb = 0;                  ///< MB: the largest file the child may write
-  std::size_t output_kept = 64 * 1024;    ///< bytes of stdout and stderr kept, the rest counted
-  std::size_t output_limit = 8u << 20;    ///< bytes: printing more stops the child
-  std::size_t records_limit = 1u << 20;   ///< bytes accepted on the record channel (fd 3)
+  long resident_mb = 0;                  ///< MB of resident memory, watched; 0: not watched
+  long file_size_mb = 0;                 ///< MB: the largest file the child may write
+  std::size_t output_kept = 64 * 1024;   ///< bytes of stdout and stderr kept, the rest counted
+  std::size_t output_limit = 8u << 20;   ///< bytes: printing more stops the child
+  std::size_t records_limit = 1u << 20;  ///< bytes accepted on the record channel (fd 3)
 };
 
 struct Command {
@@ -35,17 +35,17 @@ struct Command {
 enum class Stop { none, wall_time, cpu_time, memory, output };
 
 struct Outcome {
-  bool exited = false;      ///< ended by exit(); then exit_code is its status
+  bool exited = false;  ///< ended by exit(); then exit_code is its status
   int exit_code = 0;
-  int signal = 0;           ///< the signal that ended it, when !exited
+  int signal = 0;  ///< the signal that ended it, when !exited
   Stop stopped = Stop::none;
   double wall_seconds = 0;  ///< from start to end, s
   double cpu_seconds = 0;   ///< user + system, s
   long peak_resident_kb = 0;
-  std::string output;       ///< the first output_kept bytes of stdout and stderr, interleaved
+  std::string output;            ///< the first output_kept bytes of stdout and stderr, interleaved
   std::size_t output_bytes = 0;  ///< everything printed, bytes
-  std::string records;      ///< what arrived on fd 3 (at most records_limit bytes)
-  std::string start_error;  ///< set when the program could not be started at all
+  std::string records;           ///< what arrived on fd 3 (at most records_limit bytes)
+  std::string start_error;       ///< set when the program could not be started at all
 };
 
 /// Runs commands, at most `parallel` at once, in one thread. `done` is called with each

@@ -42,21 +42,31 @@ std::string failure_text(const TestResult& t, std::size_t shown) {
 }
 
 std::string count_text(const TaskResult& r) {
-  return std::to_string(r.passed()) + " of " + std::to_string(r.tests.size()) +
-         " tests pass (" + points_text(r.points()) + " of " + points_text(r.max_points()) +
-         " points)";
+  return std::to_string(r.passed()) + " of " + std::to_string(r.tests.size()) + " tests pass (" +
+         points_text(r.points()) + " of " + points_text(r.max_points()) + " points)";
 }
 
 std::string xml(const std::string& text) {
   std::string out;
   for (const char c : printable(text)) {
     switch (c) {
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '&': out += "&amp;"; break;
-      case '"': out += "&quot;"; break;
-      case '\t': out += "&#9;"; break;
-      default: out += c;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '&':
+        out += "&amp;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\t':
+        out += "&#9;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -117,14 +127,16 @@ std::string task_feedback(const SubmissionResult& result, int task, const Kit& k
     return out.str();
   }
   if (!r.warnings.empty())
-    out << "  the compiler warns (the tests still run):\n" << indented(printable(r.warnings), "    ");
+    out << "  the compiler warns (the tests still run):\n"
+        << indented(printable(r.warnings), "    ");
   for (const TestResult& t : r.tests) {
     out << "  " << t.test->name << " ... " << (t.passed ? "pass" : "FAIL") << '\n';
     if (!t.passed) out << indented(failure_text(t, printed_in_feedback), "        ");
   }
   out << '\n'
       << count_text(r)
-      << (r.passed() == int(r.tests.size()) ? "." : "; fix the first FAIL above first, then run again.")
+      << (r.passed() == int(r.tests.size()) ? "."
+                                            : "; fix the first FAIL above first, then run again.")
       << '\n';
   return out.str();
 }
@@ -194,15 +206,15 @@ std::string junit_report(const SubmissionResult& result, int task) {
   out << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<testsuites name=\"springlab " << xml(result.submission.name) << "\" tests=\""
       << r.tests.size() << "\" failures=\"" << failures << "\">\n"
-      << "  <testsuite name=\"task" << task << "\" tests=\"" << r.tests.size()
-      << "\" failures=\"" << failures << "\">\n";
+      << "  <testsuite name=\"task" << task << "\" tests=\"" << r.tests.size() << "\" failures=\""
+      << failures << "\">\n";
   for (const TestResult& t : r.tests) {
     out << "    <testcase classname=\"springlab.task" << task << "\" name=\"" << xml(t.test->name)
         << "\" time=\"" << t.seconds << "\">\n";
     if (!t.passed) {
       const std::string text = r.problem.empty() ? failure_text(t, 8192) : r.problem;
-      out << "      <failure message=\"" << xml(t.message.substr(0, t.message.find('\n')))
-          << "\">" << xml(text) << "</failure>\n";
+      out << "      <failure message=\"" << xml(t.message.substr(0, t.message.find('\n'))) << "\">"
+          << xml(text) << "</failure>\n";
     }
     out << "    </testcase>\n";
   }

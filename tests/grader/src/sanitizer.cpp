@@ -40,8 +40,8 @@ std::string where(const std::string& report) {
     const auto first = place.find(':');
     const auto second = place.find(':', first + 1);
     const std::string line = place.substr(first + 1, second - first - 1);
-    return " in " + short_function(f.function) + " (" + place.substr(0, first) + ", line " +
-           line + ")";
+    return " in " + short_function(f.function) + " (" + place.substr(0, first) + ", line " + line +
+           ")";
   }
   for (const Frame& f : frames)
     if (f.function.find("springlab::") != std::string::npos)
@@ -72,8 +72,8 @@ std::string explain_sanitizer_report(const std::string& output) {
   }
   if (std::regex_search(output, m, assertion))
     return "a check failed" + where(output) + ": " + m[1].str() +
-           (m[1].str().find("index") != std::string::npos || m[1].str().find("< size") !=
-                                                                    std::string::npos
+           (m[1].str().find("index") != std::string::npos ||
+                    m[1].str().find("< size") != std::string::npos
                 ? " (an index out of range)"
                 : "");
   if (!std::regex_search(output, m, asan)) return "";
@@ -102,7 +102,8 @@ std::string explain_sanitizer_report(const std::string& output) {
            " outside a local array or variable" + place;
   if (kind == "SEGV")
     return "memory error: an access to an address your code does not own (a null pointer, or "
-           "an index far out of range?)" + place;
+           "an index far out of range?)" +
+           place;
   if (kind == "stack-overflow") return "the stack overflowed (a recursion without end?)" + place;
   return "memory error (" + kind + ")" + place;
 }

@@ -10,7 +10,7 @@ namespace springlab::grader {
 namespace {
 
 constexpr std::uintmax_t largest_file = 1 << 20;  // bytes: larger files are left out
-constexpr int most_files = 64;                     // files copied per task folder
+constexpr int most_files = 64;                    // files copied per task folder
 
 std::string file_name(const std::string& kit_path) {
   return kit_path.substr(kit_path.find('/') + 1);
@@ -57,7 +57,8 @@ Submission find_submission(const fs::path& folder, const Kit& kit) {
     tasks_root = root / "tasks";
   } else {
     for (const fs::directory_entry& entry : fs::directory_iterator(root, error))
-      if (entry.is_directory() && is_task_folder(entry.path(), kit)) s.layout = Layout::tasks_folder;
+      if (entry.is_directory() && is_task_folder(entry.path(), kit))
+        s.layout = Layout::tasks_folder;
   }
   for (const auto& [task, files] : kit.task_files) {
     TaskSource& source = s.tasks[task];

@@ -23,8 +23,8 @@ enum class Layout { tasks_folder, repository, loose_files };
 
 /// Where one task's files of a submission are.
 struct TaskSource {
-  fs::path folder;                 ///< searched for the task's files ("" if the task has none)
-  std::vector<std::string> found;  ///< the kit's file names found there, e.g. "spring_damper.cpp"
+  fs::path folder;                   ///< searched for the task's files ("" if the task has none)
+  std::vector<std::string> found;    ///< the kit's file names found there, e.g. "spring_damper.cpp"
   std::vector<std::string> missing;  ///< the kit's file names not found: the starter code is used
 };
 

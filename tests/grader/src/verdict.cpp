@@ -19,7 +19,8 @@ namespace {
 // harness knows the secret, so whatever else reached fd 3 is skipped over.
 std::map<std::string, std::string> records_of(const std::string& text, const std::string& secret) {
   std::map<std::string, std::string> records;
-  for (std::size_t at = text.find(secret); at != std::string::npos; at = text.find(secret, at + 1)) {
+  for (std::size_t at = text.find(secret); at != std::string::npos;
+       at = text.find(secret, at + 1)) {
     const auto end_of_line = text.find('\n', at);
     if (end_of_line == std::string::npos) break;
     std::istringstream header(text.substr(at + secret.size(), end_of_line - at - secret.size()));
@@ -82,7 +83,8 @@ std::string system_call_name(long number) {
 
 RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limits,
                  const LimitsText& text) {
-  if (!o.start_error.empty()) return {false, "the grader could not start the test: " + o.start_error};
+  if (!o.start_error.empty())
+    return {false, "the grader could not start the test: " + o.start_error};
   switch (o.stopped) {
     case Stop::wall_time:
       return {false, "timed out: stopped after " + seconds(o.wall_seconds) + " (the limit is " +
@@ -94,8 +96,8 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
       return {false, "printed more than " + std::to_string(limits.output_limit >> 20) +
                          " MB: stopped (printing inside a loop over every step?)"};
     case Stop::memory:
-      return {false, "used more than " + std::to_string(limits.resident_mb) +
-                         " MB of memory: stopped"};
+      return {false,
+              "used more than " + std::to_string(limits.resident_mb) + " MB of memory: stopped"};
     case Stop::none:
       break;
   }
@@ -115,8 +117,8 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
     std::string message = newline == std::string::npos ? "" : payload.substr(newline + 1);
     if (!passed && message.empty()) message = "no check ran";
     if (message.find("std::bad_alloc") != std::string::npos && limits.address_space_mb > 0)
-      message += "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) +
-                 " MB)";
+      message +=
+          "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) + " MB)";
     return {passed, passed ? "" : message};
   }
   const std::string report = explain_sanitizer_report(o.output);

@@ -5,9 +5,9 @@
 // submissions and the kit's sources on disk are unchanged afterwards, and no report grows large.
 #include "process.hpp"
 
+#include <toml++/toml.h>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
-#include <toml++/toml.h>
 
 #include <chrono>
 #include <filesystem>
@@ -186,9 +186,10 @@ std::string section(const std::string& feedback, int task) {
 
 }  // namespace
 
-TEST_CASE("One batch grades the starter code, the solutions, the mutants and the hostile "
-          "submissions as each must be graded",
-          "[batch]") {
+TEST_CASE(
+    "One batch grades the starter code, the solutions, the mutants and the hostile "
+    "submissions as each must be graded",
+    "[batch]") {
   fs::remove_all(batch);
   fs::create_directories(submissions);
   std::vector<Expectation> expected;
@@ -202,8 +203,8 @@ TEST_CASE("One batch grades the starter code, the solutions, the mutants and the
     if (entry.is_directory()) expected.push_back(hostile(entry.path()));
 
   std::map<std::string, std::string> before;
-  std::vector<std::string> argv = {SPRINGLAB_GRADE, "--out", (batch / "results").string(),
-                                   "--work", (batch / "work").string()};
+  std::vector<std::string> argv = {SPRINGLAB_GRADE, "--out", (batch / "results").string(), "--work",
+                                   (batch / "work").string()};
   for (const Expectation& e : expected) {
     before[e.name] = snapshot(submissions / e.name);
     argv.push_back((submissions / e.name).string());
@@ -223,9 +224,11 @@ TEST_CASE("One batch grades the starter code, the solutions, the mutants and the
   REQUIRE(rows.count("solutions") == 1);
   // The most each task gives: the sum of its tests' max_score in the solutions' results.
   std::vector<double> most(6, 0.0);
-  const auto solutions = nlohmann::json::parse(read(batch / "results" / "solutions" / "results.json"));
+  const auto solutions =
+      nlohmann::json::parse(read(batch / "results" / "solutions" / "results.json"));
   for (const auto& test : solutions["tests"])
-    most[std::size_t(test["tags"][0].get<std::string>()[4] - '0')] += test["max_score"].get<double>();
+    most[std::size_t(test["tags"][0].get<std::string>()[4] - '0')] +=
+        test["max_score"].get<double>();
   for (int task = 1; task <= 5; ++task)
     REQUIRE(most[std::size_t(task)] > 0);
 
@@ -236,16 +239,26 @@ TEST_CASE("One batch grades the starter code, the solutions, the mutants and the
     for (const auto& [task, want] : e.points) {
       const double got = rows.at(e.name)[std::size_t(task - 1)];
       const double full = most[std::size_t(task)];
-      INFO("task " << task << ": " << got << " of " << full << " points\n" << section(feedback, task));
+      INFO("task " << task << ": " << got << " of " << full << " points\n"
+                   << section(feedback, task));
       switch (want) {
-        case Points::full: CHECK(got == full); break;
-        case Points::none: CHECK(got == 0.0); break;
-        case Points::some: CHECK((got > 0.0 && got < full)); break;
-        case Points::less: CHECK(got < full); break;
+        case Points::full:
+          CHECK(got == full);
+          break;
+        case Points::none:
+          CHECK(got == 0.0);
+          break;
+        case Points::some:
+          CHECK((got > 0.0 && got < full));
+          break;
+        case Points::less:
+          CHECK(got < full);
+          break;
       }
     }
     for (const auto& [task, pattern] : e.feedback) {
-      INFO("task " << task << " feedback must match /" << pattern << "/:\n" << section(feedback, task));
+      INFO("task " << task << " feedback must match /" << pattern << "/:\n"
+                   << section(feedback, task));
       CHECK(std::regex_search(section(feedback, task), std::regex(pattern)));
     }
     CHECK(snapshot(submissions / e.name) == before[e.name]);

@@ -21,15 +21,15 @@ struct FakeKit {
     kit.headers = kit.root / "common" / "include";
     kit.pch = top / "build" / "pch";
     kit.system_headers = {"/usr/include"};
-    for (const fs::path& folder : {kit.headers / "springlab", kit.root / "solutions", copy, kit.pch})
+    for (const fs::path& folder :
+         {kit.headers / "springlab", kit.root / "solutions", copy, kit.pch})
       fs::create_directories(folder);
   }
 };
 
 }  // namespace
 
-TEST_CASE("Dependency files: continued lines, escaped spaces and the target left out",
-          "[checks]") {
+TEST_CASE("Dependency files: continued lines, escaped spaces and the target left out", "[checks]") {
   const fs::path file = fs::temp_directory_path() / "springlab-deps-test.d";
   std::ofstream(file) << "/w/obj.o: /w/a.cpp /usr/include/x.h \\\n /w/my\\ header.hpp\n";
   const std::vector<fs::path> files = read_dependencies(file);
@@ -65,13 +65,19 @@ TEST_CASE("Includes: the submission's own files, the kit's headers and the syste
 
 TEST_CASE("Symbols: main, Catch2, the kit's own code and loading code are each named once",
           "[checks]") {
-  CHECK(symbol_problems("a.o: _ZN9springlab10submission12spring_forceERKN5Eigen6MatrixIdLi2ELi1ELi0ELi2ELi1EEES5_dd T 0 10\n"
-                        "a.o: _ZN9springlab16velocity_settledERKN5Eigen6MatrixIdLi2ELin1ELi0ELi2ELin1EEES4_S4_d U\n"
-                        "a.o: malloc U\n")
+  CHECK(symbol_problems(
+            "a.o: "
+            "_ZN9springlab10submission12spring_forceERKN5Eigen6MatrixIdLi2ELi1ELi0ELi2ELi1EEES5_dd "
+            "T 0 10\n"
+            "a.o: "
+            "_ZN9springlab16velocity_settledERKN5Eigen6MatrixIdLi2ELin1ELi0ELi2ELin1EEES4_S4_d U\n"
+            "a.o: malloc U\n")
             .empty());
   const std::vector<std::string> problems = symbol_problems(
       "a.o: main T 0 10\n"
-      "a.o: _ZN5Catch7AutoRegC1ERKNS_9ITestInvokerERKNS_14SourceLineInfoERKNS_9StringRefERKNS_10NameAndTagsE U\n"
+      "a.o: "
+      "_ZN5Catch7AutoRegC1ERKNS_9ITestInvokerERKNS_14SourceLineInfoERKNS_9StringRefERKNS_"
+      "10NameAndTagsE U\n"
       "b.o: _ZN5Catch7AutoRegD1Ev U\n"
       "b.o: _ZN9springlab9reference12spring_forceERKN5Eigen6MatrixIdLi2ELi1ELi0ELi2ELi1EEES5_dd U\n"
       "b.o: dlsym U\n");

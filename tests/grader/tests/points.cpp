@@ -63,8 +63,7 @@ TEST_CASE("Points: a task without a section keeps 1 point a test", "[points]") {
   CHECK(tests[2].points == 4.0);
 }
 
-TEST_CASE("Points: mistakes in the file are named with the value and what is allowed",
-          "[points]") {
+TEST_CASE("Points: mistakes in the file are named with the value and what is allowed", "[points]") {
   std::vector<TestInfo> tests = parse_test_list(listing);
   CHECK_THAT(rejection(tests, "[task1]\n\"Spring: tree\" = 1\n"),
              Catch::Contains("\"Spring: tree\": no test of task 1 has this name") &&

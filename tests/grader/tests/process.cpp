@@ -81,7 +81,8 @@ TEST_CASE("Memory: an address-space limit fails large allocations", "[process]")
   Limits limits;
   limits.address_space_mb = 64;
   // perl needs about 10 MB; a 200 MB string does not fit in 64.
-  const Outcome o = run_shell("exec perl -e '$x = \"a\" x (200 * 1024 * 1024); print length $x'", limits);
+  const Outcome o =
+      run_shell("exec perl -e '$x = \"a\" x (200 * 1024 * 1024); print length $x'", limits);
   CHECK_FALSE((o.exited && o.exit_code == 0));
   CHECK(o.output.find("209715200") == std::string::npos);
 }

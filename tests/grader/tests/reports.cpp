@@ -19,8 +19,9 @@ struct Example {
     result.submission.name = name;
     TaskResult& one = result.tasks[1];
     one.task = 1;
-    one.tests = {{&tests[0], true, "", "", 0, 0.1, 0.2},
-                 {&tests[1], false, "a <bad> & \"quoted\" failure", printed, printed.size(), 0.1, 0}};
+    one.tests = {
+        {&tests[0], true, "", "", 0, 0.1, 0.2},
+        {&tests[1], false, "a <bad> & \"quoted\" failure", printed, printed.size(), 0.1, 0}};
     TaskResult& two = result.tasks[2];
     two.task = 2;
     two.problem = "does not compile:\nspring_forces.cpp:3: error: expected ';'";
@@ -43,9 +44,10 @@ TEST_CASE("Points are written as people write them", "[reports]") {
   CHECK(points_text(1.0 / 3.0) == "0.33");
 }
 
-TEST_CASE("The gradebook: the exact header, points per task and in total, names quoted when "
-          "needed",
-          "[reports]") {
+TEST_CASE(
+    "The gradebook: the exact header, points per task and in total, names quoted when "
+    "needed",
+    "[reports]") {
   const Example plain("alice", ""), odd("o'brien, \"bob\"", "");
   CHECK(gradebook({plain.result, odd.result}) ==
         "submission,task1,task2,task3,task4,task5,total\n"

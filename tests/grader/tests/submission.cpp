@@ -15,9 +15,9 @@ struct Folders {
   Folders() {
     fs::remove_all(top);
     kit.starter = top / "kit" / "tasks";
-    kit.task_files = {{1, {"task1_two_masses/explicit_euler.cpp",
-                           "task1_two_masses/spring_damper.cpp"}},
-                      {2, {"task2_four_masses/spring_forces.cpp"}}};
+    kit.task_files = {
+        {1, {"task1_two_masses/explicit_euler.cpp", "task1_two_masses/spring_damper.cpp"}},
+        {2, {"task2_four_masses/spring_forces.cpp"}}};
     write(kit.starter / "task1_two_masses" / "explicit_euler.cpp", "starter euler");
     write(kit.starter / "task1_two_masses" / "spring_damper.cpp", "starter spring");
     write(kit.starter / "task2_four_masses" / "spring_forces.cpp", "starter forces");
@@ -70,7 +70,8 @@ TEST_CASE("The private copy: the task's files, the starter code for missing ones
   CHECK_FALSE(fs::exists(copy.folder / "linked.hpp"));
   REQUIRE(copy.notes.size() == 2);
   CHECK_THAT(copy.notes[0], Catch::Contains("linked.hpp is a link"));
-  CHECK_THAT(copy.notes[1], Catch::Contains("explicit_euler.cpp is missing: graded as the starter"));
+  CHECK_THAT(copy.notes[1],
+             Catch::Contains("explicit_euler.cpp is missing: graded as the starter"));
 }
 
 TEST_CASE("Copies hold the same contents exactly when their files are the same", "[submission]") {
@@ -79,7 +80,8 @@ TEST_CASE("Copies hold the same contents exactly when their files are the same",
   f.write(f.top / "b" / "task2_four_masses" / "spring_forces.cpp", "same");
   f.write(f.top / "c" / "spring_forces.cpp", "other");
   const auto contents = [&](const std::string& name) {
-    return copy_task(find_submission(f.top / name, f.kit), 2, f.kit, f.top / "work" / name).contents;
+    return copy_task(find_submission(f.top / name, f.kit), 2, f.kit, f.top / "work" / name)
+        .contents;
   };
   CHECK(contents("a") == contents("b"));
   CHECK(contents("a") != contents("c"));

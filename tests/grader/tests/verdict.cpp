@@ -1,7 +1,7 @@
 // Verdicts: only a record carrying the run's secret, followed by a clean exit, counts; every
 // other ending is a failure with its reason.
-#include "sanitizer.hpp"
 #include "verdict.hpp"
+#include "sanitizer.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -52,8 +52,8 @@ TEST_CASE("A verdict with the secret and a clean exit counts", "[verdict]") {
 TEST_CASE("Records without the secret, or a verdict followed by anything but exit 0, never pass",
           "[verdict]") {
   const std::string forged = record("verdict", "pass 12 0\n", std::string(32, '0'));
-  const RunVerdict v = verdict_of(ended(0, record("loaded", "") + forged,
-                                        "8 of 8 tests pass.\nAll tests passed\n"));
+  const RunVerdict v =
+      verdict_of(ended(0, record("loaded", "") + forged, "8 of 8 tests pass.\nAll tests passed\n"));
   CHECK_FALSE(v.passed);
   CHECK_THAT(v.message, Catch::Contains("exited before the test finished (exit status 0)"));
   CHECK_FALSE(verdict_of(ended(1, record("verdict", "pass 12 0\n"))).passed);
