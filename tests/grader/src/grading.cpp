@@ -3,6 +3,8 @@
 #include "checks.hpp"
 #include "verdict.hpp"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <fstream>
 #include <memory>
@@ -447,11 +449,17 @@ void Grader::calibrate(const fs::path& cache) {
         "the kit's own solutions fail tests, so nothing can be graded "
         "fairly (rebuild the kit; if it persists, the kit is broken):" +
         failures);
-  std::ofstream out(cache);
-  out << signature << "---\n";
-  for (const auto& [name, variant] : calibration_)
-    for (const auto& [test, seconds] : variant)
-      out << name << ' ' << seconds << ' ' << test << '\n';
+  // Written whole, then renamed: another grader reading it meanwhile sees the old or the new.
+  const fs::path partial = cache.string() + "." + std::to_string(getpid());
+  {
+    std::ofstream out(partial);
+    out << signature << "---\n";
+    for (const auto& [name, variant] : calibration_)
+      for (const auto& [test, seconds] : variant)
+        out << name << ' ' << seconds << ' ' << test << '\n';
+  }
+  std::error_code error;
+  fs::rename(partial, cache, error);
 }
 
 }  // namespace springlab::grader

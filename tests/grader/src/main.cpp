@@ -10,6 +10,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <sched.h>
+
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -48,6 +51,38 @@ void prepare(const fs::path& folder) {
   }
   fs::create_directories(folder);
   std::ofstream(folder / marker) << "written by springlab-grade, emptied by its next run\n";
+}
+
+// The processors this process may use: its affinity mask, and a container's CPU quota (a
+// container often sees every processor of its host but may use only a few).
+int available_processors() {
+  cpu_set_t set;
+  int count = sched_getaffinity(0, sizeof set, &set) == 0
+                  ? CPU_COUNT(&set)
+                  : int(std::thread::hardware_concurrency());
+  std::string quota;
+  long period = 0;
+  std::ifstream v2("/sys/fs/cgroup/cpu.max");  // cgroup v2: "QUOTA PERIOD" or "max PERIOD"
+  std::ifstream v1_quota("/sys/fs/cgroup/cpu/cpu.cfs_quota_us");  // cgroup v1: -1 for none
+  std::ifstream v1_period("/sys/fs/cgroup/cpu/cpu.cfs_period_us");
+  const bool found = bool(v2 >> quota >> period) || (v1_quota >> quota && v1_period >> period);
+  if (found && quota != "max" && quota.front() != '-' && period > 0)
+    count = std::min(count, int((std::stol(quota) + period - 1) / period));
+  return std::max(1, count);
+}
+
+// Grading writes nowhere near a submission: neither inside one, nor around one it would empty.
+void check_apart(const fs::path& folder, const std::vector<Submission>& submissions) {
+  const fs::path f = fs::weakly_canonical(fs::absolute(folder));
+  for (const Submission& s : submissions) {
+    const auto inside = [](const fs::path& a, const fs::path& b) {
+      const auto [end, _] = std::mismatch(b.begin(), b.end(), a.begin(), a.end());
+      return end == b.end();
+    };
+    if (inside(f, s.folder) || inside(s.folder, f))
+      throw UsageError(folder.string() + " and the submission " + s.folder.string() +
+                       " overlap: grading never writes in or around a submission");
+  }
 }
 
 std::string run_trusted(const std::vector<std::string>& argv) {
@@ -96,6 +131,8 @@ int grade(const Options& options) {
   Settings settings = options.settings;
   settings.tasks = options.tasks;
   settings.work = options.work.empty() ? options.out.parent_path() / "work" : options.work;
+  check_apart(options.out, submissions);
+  check_apart(settings.work, submissions);
   prepare(options.out);
   prepare(settings.work);
 
@@ -159,7 +196,7 @@ int grade(const Options& options) {
 
 int main(int argc, char** argv) {
   Options options;
-  options.settings.jobs = std::max(1, int(std::thread::hardware_concurrency()));
+  options.settings.jobs = available_processors();
   CLI::App app(
       "springlab-grade: grades submissions of the springlab tasks, each test in a "
       "process of its own under limits, plain and with the sanitizers");
@@ -170,7 +207,8 @@ int main(int argc, char** argv) {
   app.add_option("--out", options.out, "results: gradebook.csv and a folder per submission")
       ->capture_default_str();
   app.add_option("--work", options.work, "private copies and builds (default: beside --out)");
-  app.add_option("--jobs", options.settings.jobs, "processes at once")
+  app.add_option("--jobs", options.settings.jobs,
+                 "processes at once (default: the processors this machine or container allows)")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   app.add_option("--points", options.points, "the points file (default: the kit's)");
