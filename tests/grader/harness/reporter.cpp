@@ -25,7 +25,7 @@ std::string explain(const Catch::AssertionStats& stats) {
     if (text.find("is not implemented yet") != std::string::npos) return text;
     text = "threw: " + text;
     for (const Catch::MessageInfo& message : stats.infoMessages)
-      text += "\n" + message.message;
+      if (message.message != result.getMessage()) text += "\n" + message.message;
     return text;
   }
   std::string file = result.getSourceInfo().file;

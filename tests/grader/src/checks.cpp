@@ -85,6 +85,50 @@ std::string include_problem(const fs::path& file, const fs::path& copy, const fs
          "library's, Eigen's and your own files";
 }
 
+// The symbols an object file refers to but does not define, demangled.
+std::vector<std::string> undefined_symbols(const std::string& nm_output) {
+  std::vector<std::string> names;
+  std::istringstream lines(nm_output);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream fields(line);
+    std::string file, symbol, type;
+    if (fields >> file >> symbol >> type && (type == "U" || type == "w"))
+      names.push_back(demangle(symbol));
+  }
+  return names;
+}
+
+std::vector<std::string> review_notes(const std::string& nm_output) {
+  static const std::vector<std::pair<std::string, std::vector<std::string>>> kinds = {
+      {"ends the program", {"exit", "_exit", "_Exit", "quick_exit", "abort"}},
+      {"starts programs",
+       {"system", "popen", "fork", "vfork", "execv", "execve", "execvp", "execl", "execlp",
+        "posix_spawn", "posix_spawnp"}},
+      {"starts threads", {"pthread_create", "std::thread::_M_start_thread"}},
+      {"uses files",
+       {"fopen", "fopen64", "open", "open64", "openat", "creat", "std::basic_ofstream",
+        "std::basic_ifstream", "std::basic_fstream", "std::filesystem::"}},
+      {"handles or sends signals", {"signal", "sigaction", "raise", "kill"}},
+      {"reaches memory or the system directly",
+       {"syscall", "mmap", "mmap64", "mprotect", "ptrace", "process_vm_readv"}},
+      {"reads the environment", {"getenv", "secure_getenv"}},
+      {"sleeps", {"sleep", "usleep", "nanosleep", "clock_nanosleep"}},
+      {"jumps out of functions", {"setjmp", "_setjmp", "longjmp", "siglongjmp"}}};
+  std::vector<std::string> notes;
+  for (const std::string& name : undefined_symbols(nm_output))
+    for (const auto& [kind, prefixes] : kinds)
+      for (const std::string& prefix : prefixes) {
+        const bool whole = prefix.find("::") == std::string::npos;
+        const bool match =
+            whole ? name == prefix || name.rfind(prefix + "@", 0) == 0 : name.rfind(prefix, 0) == 0;
+        const std::string note = kind + " (" + (whole ? name : prefix + "...") + ")";
+        if (match && std::find(notes.begin(), notes.end(), note) == notes.end())
+          notes.push_back(note);
+      }
+  return notes;
+}
+
 std::vector<std::string> symbol_problems(const std::string& nm_output) {
   std::vector<std::string> problems;
   const auto add = [&](const std::string& problem) {

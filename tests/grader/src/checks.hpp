@@ -22,4 +22,9 @@ std::string include_problem(const fs::path& file, const fs::path& copy, const fs
 /// problem once, in words for the student. Empty when nothing is.
 std::vector<std::string> symbol_problems(const std::string& nm_output);
 
+/// What else the objects call that no task needs (ending the program, files, programs, threads,
+/// signals, raw system calls, sleeping, the environment), once each: for the instructor to
+/// review, not a verdict (the test process is kept from doing most of it anyway).
+std::vector<std::string> review_notes(const std::string& nm_output);
+
 }  // namespace springlab::grader

@@ -237,6 +237,7 @@ class Grader::Pipeline {
     c.limits = build_limits();
     c.limits.output_kept = c.limits.output_limit;
     pool_.add(std::move(c), [this, b](Outcome o) {
+      b->result.review = review_notes(o.output);
       const std::vector<std::string> problems = symbol_problems(o.output);
       if (!problems.empty()) {
         std::string text = "not graded:";

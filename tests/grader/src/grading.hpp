@@ -42,6 +42,7 @@ struct TaskResult {
   std::vector<std::string> notes;  ///< files left out or replaced by the starter code
   std::string problem;   ///< why no test could run (does not compile, rejected); "" otherwise
   std::string warnings;  ///< what the compiler said of code that compiled
+  std::vector<std::string> review;  ///< calls no task needs, for the instructor (checks.hpp)
   std::vector<TestResult> tests;
   double points() const;
   double max_points() const;

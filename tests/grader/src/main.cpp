@@ -186,9 +186,15 @@ int grade(const Options& options) {
   const std::vector<SubmissionResult> results =
       grader.grade(submissions, task_done, submission_done);
   write_file(options.out / "gradebook.csv", gradebook(results));
-  if (!options.student)
+  const std::string review = review_list(results);
+  if (!review.empty()) write_file(options.out / "review.csv", review);
+  if (!options.student) {
     std::cerr << "springlab-grade: " << options.out.string() << "/gradebook.csv, and per "
               << "submission feedback.txt, results.json and taskN.junit.xml\n";
+    if (!review.empty())
+      std::cerr << "springlab-grade: some code calls what no task needs (ending the program, "
+                << "files, threads, ...): " << options.out.string() << "/review.csv lists it\n";
+  }
   return options.student && !all_passed ? 1 : 0;
 }
 

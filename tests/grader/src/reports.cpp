@@ -222,6 +222,20 @@ std::string junit_report(const SubmissionResult& result, int task) {
   return out.str();
 }
 
+std::string review_list(const std::vector<SubmissionResult>& results) {
+  std::string text;
+  for (const SubmissionResult& r : results)
+    for (const auto& [task, result] : r.tasks) {
+      std::string calls;
+      for (const std::string& note : result.review)
+        calls += (calls.empty() ? "" : "; ") + note;
+      if (!calls.empty())
+        text += csv(printable(r.submission.name)) + "," + std::to_string(task) + "," + csv(calls) +
+                "\n";
+    }
+  return text.empty() ? "" : "submission,task,calls\n" + text;
+}
+
 std::string gradebook(const std::vector<SubmissionResult>& results) {
   std::string text = "submission,task1,task2,task3,task4,task5,total\n";
   for (const SubmissionResult& r : results) {

@@ -31,6 +31,10 @@ std::string junit_report(const SubmissionResult& result, int task);
 /// gradebook.csv: "submission,task1,task2,task3,task4,task5,total" and one row per submission.
 std::string gradebook(const std::vector<SubmissionResult>& results);
 
+/// review.csv: "submission,task,calls" and a row per task whose code calls what no task needs;
+/// "" when none does.
+std::string review_list(const std::vector<SubmissionResult>& results);
+
 /// Points as people write them: "12", "2.5".
 std::string points_text(double points);
 

@@ -87,3 +87,20 @@ TEST_CASE("Symbols: main, Catch2, the kit's own code and loading code are each n
   CHECK_THAT(problems[2], Catch::Contains("calls springlab::reference::spring_force"));
   CHECK_THAT(problems[3], Catch::Contains("loads code at run time (dlsym)"));
 }
+
+TEST_CASE("Review notes: calls no task needs, each kind named once with what was called",
+          "[checks]") {
+  CHECK(review_notes("a.o: sqrt U\na.o: _Znwm U\n").empty());
+  const std::vector<std::string> notes = review_notes(
+      "a.o: _exit U\n"
+      "a.o: fopen U\n"
+      "b.o: fopen U\n"
+      "b.o: _ZNSt14basic_ofstreamIcSt11char_traitsIcEEC1EPKcSt13_Ios_Openmode U\n"
+      "b.o: syscall U\n"
+      "b.o: exit T 0 4\n");
+  REQUIRE(notes.size() == 4);
+  CHECK(notes[0] == "ends the program (_exit)");
+  CHECK(notes[1] == "uses files (fopen)");
+  CHECK(notes[2] == "uses files (std::basic_ofstream...)");
+  CHECK(notes[3] == "reaches memory or the system directly (syscall)");
+}
