@@ -1,6 +1,5 @@
 #include "sanitizer.hpp"
 
-#include <regex>
 #include <sstream>
 #include <vector>
 
@@ -11,15 +10,20 @@ struct Frame {
   std::string function, place;
 };
 
-// "#3 0x55d0 in springlab::submission::f(int) /work/x/tasks/task2_four_masses/a.cpp:13:7"
+// "    #3 0x55d0 in springlab::submission::f(int) /w/x/tasks/task2_four_masses/a.cpp:13:7"
 std::vector<Frame> frames_of(const std::string& report) {
-  static const std::regex frame(R"(^\s*#\d+ 0x[0-9a-f]+ in (.*) (\S+)$)");
   std::vector<Frame> frames;
   std::istringstream lines(report);
   std::string line;
-  std::smatch m;
-  while (std::getline(lines, line))
-    if (std::regex_match(line, m, frame)) frames.push_back({m[1], m[2]});
+  while (std::getline(lines, line)) {
+    const auto hash = line.find_first_not_of(' ');
+    const auto in = line.find(" in ");
+    const auto last_space = line.rfind(' ');
+    if (hash == std::string::npos || line[hash] != '#' || in == std::string::npos ||
+        last_space <= in + 3)
+      continue;
+    frames.push_back({line.substr(in + 4, last_space - in - 4), line.substr(last_space + 1)});
+  }
   return frames;
 }
 
@@ -29,20 +33,24 @@ std::string short_function(std::string name) {
   return colons == std::string::npos ? name : name.substr(colons + 2);
 }
 
+// "/w/x/tasks/task2_four_masses/a.cpp:13:7" -> "tasks/task2_four_masses/a.cpp, line 13"; "" when
+// the place is not in a submission's task folder.
+std::string student_place(const std::string& place) {
+  const auto at = place.find("tasks/task");
+  if (at == std::string::npos) return "";
+  const std::string rest = place.substr(at);
+  const auto colon = rest.find(':');
+  if (colon == std::string::npos) return rest;
+  const std::string line = rest.substr(colon + 1, rest.find(':', colon + 1) - colon - 1);
+  return rest.substr(0, colon) + ", line " + line;
+}
+
 // Where, in words: the student's first frame, or the kit's code the student's data reached.
 std::string where(const std::string& report) {
   const std::vector<Frame> frames = frames_of(report);
-  for (const Frame& f : frames) {
-    const auto at = f.place.find("/tasks/task");
-    if (at == std::string::npos) continue;
-    std::string place = f.place.substr(at + 1);
-    // file:line:column -> file, line
-    const auto first = place.find(':');
-    const auto second = place.find(':', first + 1);
-    const std::string line = place.substr(first + 1, second - first - 1);
-    return " in " + short_function(f.function) + " (" + place.substr(0, first) + ", line " + line +
-           ")";
-  }
+  for (const Frame& f : frames)
+    if (const std::string place = student_place(f.place); !place.empty())
+      return " in " + short_function(f.function) + " (" + place + ")";
   for (const Frame& f : frames)
     if (f.function.find("springlab::") != std::string::npos)
       return " in the kit's " + short_function(f.function) +
@@ -50,34 +58,47 @@ std::string where(const std::string& report) {
   return "";
 }
 
+// "reads 8 bytes" from "READ of size 8 at ...".
 std::string access(const std::string& report) {
-  static const std::regex size(R"((READ|WRITE) of size (\d+))");
-  std::smatch m;
-  if (!std::regex_search(report, m, size)) return "accesses memory";
-  return std::string(m[1] == "READ" ? "reads " : "writes ") + m[2].str() + " bytes";
+  for (const std::string kind : {"READ", "WRITE"}) {
+    const auto at = report.find(kind + " of size ");
+    if (at == std::string::npos) continue;
+    const auto digits = at + kind.size() + 9;
+    const std::string size = report.substr(digits, report.find(' ', digits) - digits);
+    return (kind == "READ" ? "reads " : "writes ") + size + " bytes";
+  }
+  return "accesses memory";
+}
+
+std::string line_after(const std::string& text, std::size_t at) {
+  return text.substr(at, text.find('\n', at) - at);
 }
 
 }  // namespace
 
 std::string explain_sanitizer_report(const std::string& output) {
-  static const std::regex asan(R"(ERROR: AddressSanitizer: ([a-zA-Z-]+))");
-  static const std::regex ubsan(R"(([^\s:]+):(\d+):\d+: runtime error: ([^\n]*))");
-  static const std::regex assertion(R"(Assertion `([^\n]*)' failed)");
-  std::smatch m;
-  if (std::regex_search(output, m, ubsan)) {
-    std::string file = m[1];
-    const auto at = file.find("tasks/task");
-    if (at != std::string::npos) file = file.substr(at);
-    return "undefined behaviour (" + file + ", line " + m[2].str() + "): " + m[3].str();
+  // UndefinedBehaviorSanitizer: "FILE:LINE:COLUMN: runtime error: WHAT".
+  if (const auto at = output.find(": runtime error: "); at != std::string::npos) {
+    const auto start = output.rfind('\n', at) + 1;  // npos + 1 == 0 on the first line
+    const std::string place = student_place(output.substr(start, at - start));
+    return "undefined behaviour" + (place.empty() ? "" : " (" + place + ")") + ": " +
+           line_after(output, at + 17);
   }
-  if (std::regex_search(output, m, assertion))
-    return "a check failed" + where(output) + ": " + m[1].str() +
-           (m[1].str().find("index") != std::string::npos ||
-                    m[1].str().find("< size") != std::string::npos
-                ? " (an index out of range)"
-                : "");
-  if (!std::regex_search(output, m, asan)) return "";
-  const std::string kind = m[1], report = output.substr(std::size_t(m.position(0)));
+  // A failed assertion (Eigen's index and size checks), with the sanitizer's stack after it.
+  if (const auto at = output.find("Assertion `"); at != std::string::npos) {
+    const std::string condition = line_after(output, at + 11);
+    const std::string what = condition.substr(0, condition.rfind("' failed"));
+    const bool index =
+        what.find("index") != std::string::npos || what.find("< size") != std::string::npos;
+    return "a check failed" + where(output) + ": " + what +
+           (index ? " (an index out of range)" : "");
+  }
+  const std::string marker = "ERROR: AddressSanitizer: ";
+  const auto at = output.find(marker);
+  if (at == std::string::npos) return "";
+  const std::string report = output.substr(at);
+  const std::string heading = line_after(report, marker.size());
+  const std::string kind = heading.substr(0, heading.find(' '));
   const std::string place = where(report);
   if (kind == "heap-buffer-overflow" || kind == "global-buffer-overflow") {
     const bool after = report.find("to the right of") != std::string::npos;
