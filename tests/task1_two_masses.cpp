@@ -26,11 +26,14 @@ TEST_CASE("Spring: Hooke's magnitude and direction, stretched, compressed and ro
           "[task1][spring]") {
   INFO("equation (1.1): F_pq = -k (|r_p - r_q| - l0) (r_p - r_q) / |r_p - r_q|");
   const double angle = GENERATE(0.0, 90.0, 37.0, 200.0, -135.0);
-  const double length = GENERATE(1.3, 0.6, 2.5);  // stretched, compressed, stretched far
-  const double k = 20.0, rest = 1.0;
+  // Rest lengths other than 1, or k (L - l0) / l0 would pass too; the lengths are multiples of
+  // each: stretched, compressed, stretched far.
+  const double rest = GENERATE(1.0, std::numbers::sqrt2, 0.5);
+  const double ratio = GENERATE(1.3, 0.6, 2.5);  // L / l0
+  const double k = 20.0, length = ratio * rest;
   const Vec2 r_q(0.4, -0.7);
   const Vec2 r_p = r_q + length * direction(angle);
-  CAPTURE(angle, length);
+  CAPTURE(angle, rest, length);
   const Vec2 f = spring_force(r_p, r_q, k, rest);
   const Vec2 towards_q = -direction(angle);
   // A stretched spring pulls p towards q with k·(L - l0); a compressed one pushes it away.
