@@ -38,12 +38,29 @@ std::string first_lines(const std::string& text, std::size_t count) {
   return result;
 }
 
-// Paths in the compiler's messages as the student knows them: tasks/task1_.../file.cpp.
-std::string student_paths(std::string text, const fs::path& copy) {
-  const std::string prefix = copy.parent_path().parent_path().string() + "/";
-  for (auto at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at))
-    text.erase(at, prefix.size());
+// Paths in the compiler's messages as the student knows them: tasks/task1_.../file.cpp and
+// common/include/..., not where the grader keeps its copy or where the kit lies.
+std::string student_paths(std::string text, const fs::path& copy, const fs::path& kit) {
+  for (const std::string& prefix :
+       {copy.parent_path().parent_path().string() + "/", kit.string() + "/"})
+    for (auto at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at))
+      text.erase(at, prefix.size());
   return text;
+}
+
+std::string stop_text(Stop stop) {
+  switch (stop) {
+    case Stop::wall_time:
+    case Stop::cpu_time:
+      return "(the compiler was stopped: it ran too long)\n";
+    case Stop::memory:
+      return "(the compiler was stopped: it used too much memory)\n";
+    case Stop::output:
+      return "(the compiler was stopped: it printed too much)\n";
+    case Stop::none:
+      break;
+  }
+  return "";
 }
 
 std::string kit_signature(const Kit& kit, const std::vector<TestInfo>& tests) {
@@ -161,6 +178,7 @@ class Grader::Pipeline {
       : g_(grader), kit_(grader.kit_), pool_(pool), generous_(generous) {
     run_folder_ = g_.settings_.work / "run";
     fs::create_directories(run_folder_);
+    fs::create_directories(g_.settings_.work / "tmp");
     limits_text_.time = generous ? "60 s while measuring the reference" : g_.time_limit_text();
   }
 
@@ -189,6 +207,13 @@ class Grader::Pipeline {
   fs::path run_folder_;
   LimitsText limits_text_;
 
+  // The compiler's and the linker's temporary files go to the work folder, never elsewhere.
+  std::vector<std::string> build_environment() const {
+    std::vector<std::string> env = plain_environment();
+    env.push_back("TMPDIR=" + (g_.settings_.work / "tmp").string());
+    return env;
+  }
+
   void compile(const std::shared_ptr<TaskBuild>& b, const Variant& v, Then then) {
     struct Stage {
       std::size_t open = 0;
@@ -205,13 +230,12 @@ class Grader::Pipeline {
            {std::string("-MD"), std::string("-MF"), object.string() + ".d", std::string("-c"),
             (b->copy / source).string(), std::string("-o"), object.string()})
         c.argv.push_back(arg);
-      c.env = plain_environment();
+      c.env = build_environment();
       c.directory = b->copy.string();
       c.limits = build_limits();
-      pool_.add(std::move(c), [b, stage, then](Outcome o) {
+      pool_.add(std::move(c), [this, b, stage, then](Outcome o) {
         const bool ok = o.exited && o.exit_code == 0;
-        std::string messages = student_paths(o.output, b->copy);
-        if (o.stopped != Stop::none) messages += "(the compiler was stopped: it ran too long)\n";
+        std::string messages = stop_text(o.stopped) + student_paths(o.output, b->copy, kit_.root);
         if (!o.start_error.empty()) messages += o.start_error + "\n";
         stage->ok = stage->ok && ok;
         stage->messages += messages;
@@ -269,11 +293,12 @@ class Grader::Pipeline {
     c.argv.push_back(kit_.tables.at(b->task).string());
     for (const fs::path& path : kit_.link_always)
       c.argv.push_back(path.string());
-    c.env = plain_environment();
+    c.env = build_environment();
     c.directory = b->folder.string();
     c.limits = build_limits();
-    pool_.add(std::move(c), [b, then](Outcome o) {
-      then(o.exited && o.exit_code == 0, first_lines(student_paths(o.output, b->copy), 30));
+    pool_.add(std::move(c), [b, then, &kit = kit_](Outcome o) {
+      then(o.exited && o.exit_code == 0,
+           first_lines(student_paths(o.output, b->copy, kit.root), 30));
     });
   }
 

@@ -72,7 +72,10 @@ std::string xml(const std::string& text) {
   return out;
 }
 
-std::string csv(const std::string& field) {
+std::string csv(std::string field) {
+  // A spreadsheet would run a name such as =1+2 as a formula: a leading quote keeps it text.
+  if (!field.empty() && std::string("=+-@").find(field.front()) != std::string::npos)
+    field.insert(0, "'");
   if (field.find_first_of(",\"\n\r") == std::string::npos) return field;
   std::string quoted = "\"";
   for (const char c : field)
@@ -98,11 +101,17 @@ std::string printable(const std::string& text) {
       ++i;
       continue;
     }
-    // A UTF-8 sequence: a lead byte for 2-4 bytes, then continuation bytes 10xxxxxx.
-    const std::size_t length = c >= 0xf0 && c < 0xf5 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 ? 2 : 0;
-    bool valid = length > 0 && c < 0xf5 && i + length <= text.size();
+    // A UTF-8 sequence: a lead byte for 2-4 bytes, then continuation bytes 10xxxxxx; no
+    // overlong forms, no surrogates (U+D800-DFFF), nothing above U+10FFFF.
+    const std::size_t length = c >= 0xf0 && c <= 0xf4 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 ? 2 : 0;
+    bool valid = length > 0 && i + length <= text.size();
     for (std::size_t k = 1; valid && k < length; ++k)
       valid = (static_cast<unsigned char>(text[i + k]) & 0xc0) == 0x80;
+    if (valid && length > 2) {
+      const auto second = static_cast<unsigned char>(text[i + 1]);
+      valid = !(c == 0xe0 && second < 0xa0) && !(c == 0xed && second >= 0xa0) &&
+              !(c == 0xf0 && second < 0x90) && !(c == 0xf4 && second >= 0x90);
+    }
     if (valid) {
       out.append(text, i, length);
       i += length;
@@ -150,7 +159,8 @@ std::string summary_feedback(const SubmissionResult& result) {
     if (r.problem.rfind("does not compile", 0) == 0)
       out << "does not compile (0 of " << points_text(r.max_points()) << " points)\n";
     else if (!r.problem.empty())
-      out << "not graded: " << printable(r.problem.substr(r.problem.find('\n') + 1, 200)) << '\n';
+      out << printable(r.problem.substr(0, r.problem.find('\n'))) << " (0 of "
+          << points_text(r.max_points()) << " points)\n";
     else
       out << count_text(r) << '\n';
   }

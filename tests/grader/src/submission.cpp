@@ -88,29 +88,36 @@ TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
       for (const std::string& f : files)
         other_tasks_files.insert(file_name(f));
 
-  std::vector<fs::path> files;
+  // The task's own files always; the submission's other files (its headers) up to a limit, so
+  // that no number of extra files can push the task's files out.
+  std::vector<fs::path> files, others;
+  for (const std::string& name : source.found)
+    files.push_back(source.folder / name);
   std::error_code error;
   if (!source.folder.empty())
     for (const fs::directory_entry& entry : fs::directory_iterator(source.folder, error)) {
       const std::string name = entry.path().filename().string();
-      if (entry.is_directory() || other_tasks_files.count(name) > 0) continue;
+      const bool kit_file =
+          std::find(source.found.begin(), source.found.end(), name) != source.found.end();
+      if (kit_file || entry.is_directory() || other_tasks_files.count(name) > 0) continue;
       if (entry.is_symlink()) {
         copy.notes.push_back(name + " is a link, not a file: left out (submit the file itself)");
         continue;
       }
       if (!entry.is_regular_file()) continue;
-      if (entry.file_size() > largest_file) {
+      if (entry.file_size(error) > largest_file) {
         copy.notes.push_back(name + " is larger than 1 MB: left out");
         continue;
       }
-      files.push_back(entry.path());
+      others.push_back(entry.path());
     }
-  std::sort(files.begin(), files.end());
-  if (files.size() > std::size_t(most_files)) {
-    copy.notes.push_back("more than " + std::to_string(most_files) + " files in " +
-                         source.folder.string() + ": only the first are used");
-    files.resize(std::size_t(most_files));
+  std::sort(others.begin(), others.end());
+  if (others.size() > std::size_t(most_files)) {
+    copy.notes.push_back(std::to_string(others.size()) + " other files beside the task's: only " +
+                         "the first " + std::to_string(most_files) + " are copied");
+    others.resize(std::size_t(most_files));
   }
+  files.insert(files.end(), others.begin(), others.end());
   for (const std::string& name : source.missing) {
     files.push_back(kit.starter / kit.task_folder(task) / name);
     copy.notes.push_back(name + " is missing: graded as the starter code");

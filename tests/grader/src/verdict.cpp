@@ -123,6 +123,11 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
   }
   const std::string report = explain_sanitizer_report(o.output);
   if (!report.empty()) return {false, report};
+  if (!o.exited && o.signal == SIGSYS)  // the filter's own signal, when the handler could not run
+    return {false,
+            "stopped: your code asked the system for something tests never need. While "
+            "tests run, code may not start programs or threads, change files or signal "
+            "other processes"};
   if (!o.exited) return {false, "crashed: " + signal_text(o.signal)};
   if (records.count("loaded") == 0)
     return {false, "ended while your code was being loaded, before the test began (exit status " +

@@ -95,6 +95,16 @@ Expectation all(const std::string& name, const std::string& what, Points points)
   return e;
 }
 
+// A case's file, with @KIT@ replaced by the kit's folder (cases that name the kit's files by
+// their absolute path work wherever the kit is).
+void write_case_file(const fs::path& from, const fs::path& to) {
+  std::string text = read(from);
+  const std::string placeholder = "@KIT@";
+  for (auto at = text.find(placeholder); at != std::string::npos; at = text.find(placeholder, at))
+    text.replace(at, placeholder.size(), kit.string());
+  std::ofstream(to, std::ios::binary) << text;
+}
+
 // A hostile case: its base (solutions/ or the starter code) with the case's files over it.
 Expectation hostile(const fs::path& folder) {
   const fs::path expect_file = folder / "expect.toml";
@@ -117,8 +127,7 @@ Expectation hostile(const fs::path& folder) {
     const std::string name = file.path().filename().string();
     if (name == "expect.toml") continue;
     if (known.count(name) > 0) {
-      fs::copy_file(file.path(), target / known.at(name) / name,
-                    fs::copy_options::overwrite_existing);
+      write_case_file(file.path(), target / known.at(name) / name);
       touched.push_back(known.at(name));
     } else {
       helpers.push_back(name);
@@ -126,8 +135,7 @@ Expectation hostile(const fs::path& folder) {
   }
   for (const std::string& helper : helpers)
     for (const std::string& task_folder : touched)
-      fs::copy_file(folder / helper, target / task_folder / helper,
-                    fs::copy_options::overwrite_existing);
+      write_case_file(folder / helper, target / task_folder / helper);
   for (int task = 1; task <= 5; ++task) {
     const std::string key = "task" + std::to_string(task);
     if (const auto points = expect[key]["points"].value<std::string>())

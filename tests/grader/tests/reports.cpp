@@ -36,6 +36,10 @@ TEST_CASE("Printable text: no control characters, valid UTF-8, newlines and tabs
   CHECK(printable("a\x1b[2Jb\tc\nd\r") == "a?[2Jb\tc\nd?");
   CHECK(printable("ℓ0 = √2 m") == "ℓ0 = √2 m");
   CHECK(printable("bad \xff\xfe and cut \xe2\x88") == "bad ?? and cut ??");
+  // Surrogates, overlong forms and code points above U+10FFFF are not UTF-8 either.
+  CHECK(printable("\xed\xa0\x80|\xe0\x80\xaf|\xf0\x80\x80\xaf|\xf4\x90\x80\x80|\xc0\xaf") ==
+        "???|???|????|????|??");
+  CHECK(printable("\xf0\x9f\x99\x82 \xf4\x8f\xbf\xbf") == "\xf0\x9f\x99\x82 \xf4\x8f\xbf\xbf");
 }
 
 TEST_CASE("Points are written as people write them", "[reports]") {
@@ -48,11 +52,12 @@ TEST_CASE(
     "The gradebook: the exact header, points per task and in total, names quoted when "
     "needed",
     "[reports]") {
-  const Example plain("alice", ""), odd("o'brien, \"bob\"", "");
-  CHECK(gradebook({plain.result, odd.result}) ==
+  const Example plain("alice", ""), odd("o'brien, \"bob\"", ""), formula("=1+2", "");
+  CHECK(gradebook({plain.result, odd.result, formula.result}) ==
         "submission,task1,task2,task3,task4,task5,total\n"
         "alice,2,0,,,,2\n"
-        "\"o'brien, \"\"bob\"\"\",2,0,,,,2\n");
+        "\"o'brien, \"\"bob\"\"\",2,0,,,,2\n"
+        "'=1+2,2,0,,,,2\n");
 }
 
 TEST_CASE("results.json: Gradescope's fields for every test, and what the code printed made safe",
