@@ -41,4 +41,7 @@ NotImplemented::NotImplemented(int task, std::string function, std::string file)
                        std::to_string(task) + ")"),
       task_(task) {}
 
+NotImplemented::NotImplemented(std::string message, int task)
+    : std::logic_error(std::move(message)), task_(task) {}
+
 }  // namespace springlab

@@ -43,6 +43,8 @@ class DivergenceError : public std::runtime_error {
 class NotImplemented : public std::logic_error {
  public:
   NotImplemented(int task, std::string function, std::string file);
+  /// The same error with its message already written (the grader relays it between processes).
+  NotImplemented(std::string message, int task);
   int task() const { return task_; }
 
  private:

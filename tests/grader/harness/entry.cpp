@@ -1,7 +1,14 @@
-// Compiled into every submission library the grader links (tests/grader/src/build.cpp): the one
-// symbol the harness looks up after loading it, the library's table of task functions.
+// Compiled into every submission library: the library's own pointer to the table in use, and
+// the one function the worker looks up after loading it, which points that pointer at the
+// worker's table and returns the library's own task functions.
+#include "dispatch.hpp"
 #include "springlab/this_implementation.hpp"
 
-extern "C" const springlab::Implementation* springlab_submission_implementation() {
+const springlab::Implementation* springlab_dispatch =
+    nullptr;  // declared extern "C" in dispatch.hpp
+
+extern "C" const springlab::Implementation* springlab_submission_bind(
+    const springlab::Implementation* host) {
+  springlab_dispatch = host;
   return &springlab::implementation();
 }

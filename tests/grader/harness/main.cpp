@@ -1,22 +1,32 @@
-// springlab-grade-harness: runs one of the kit's tests against one submission's library, for the
-// grader (tests/grader/src/). It is the only program in which submission code ever runs.
-//   springlab-grade-harness --list            every test: "[tags]<TAB>name", one per line
-//   springlab-grade-harness --run NAME LIB    runs test NAME against the library LIB; the grader
-//                                             gives the secret on fd 4 and reads records on fd 3
-// The records, in order: "loaded" once the library is in (its static initialisers have run),
-// then "verdict" ("pass|fail PASSED FAILED" and the first failure, explained) as the very last
-// act before _exit(0). A run that ends any other way has no verdict, and the grader fails it.
+// springlab-grade-taskN: the kit's tests of task N (SPRINGLAB_GRADED_TASK) for the grader
+// (tests/grader/src/), in two roles, each in a process of its own:
+//   --list                        every test: "[tags]<TAB>name", one per line
+//   --run NAME WORKER LIBRARY [--resident-mb MB]
+//       the harness: starts WORKER --work NAME LIBRARY, runs test NAME without any submission
+//       code, answering the task's functions from the worker's transcript (transcript.hpp), and
+//       reports to the grader on fd 3, each record carrying the secret it sent on fd 4: "worker"
+//       (how the worker ended) and "verdict" ("pass|fail PASSED FAILED" and the first failure)
+//   --work NAME LIBRARY
+//       the worker: restricts itself (sandbox.hpp), loads LIBRARY, runs test NAME with it and
+//       writes the transcript on fd 3. Its own verdict counts for nothing.
+// So the verdict comes from a process that never holds submission code.
 #include "catch_runner.hpp"
-#include "forwarders.hpp"
+#include "dispatch.hpp"
 #include "record.hpp"
+#include "recorder.hpp"
+#include "replayer.hpp"
 #include "reporter.hpp"
 #include "sandbox.hpp"
 
 #include <dlfcn.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
-#include <cstdio>
+#include <climits>
 #include <cstring>
+#include <fstream>
 #include <iostream>
 #include <string>
 
@@ -25,45 +35,135 @@ using namespace springlab::grading;
 
 namespace {
 
-[[noreturn]] void end_with(const char* kind, const std::string& payload) {
-  std::cout.flush();
-  std::cerr.flush();
-  std::fflush(nullptr);  // what the code under test printed reaches the grader first
-  write_record(kind, payload);
+constexpr int graded_task = SPRINGLAB_GRADED_TASK;
+constexpr int transcript_fd = 3;  // in the worker
+TranscriptWriter* writer = nullptr;
+
+void report_forbidden(long number) {
+  writer->forbidden(number);
+}
+
+[[noreturn]] void refuse(TranscriptWriter& out, const std::string& why) {
+  out.event(Event::refused);
+  out.out().put(why);
+  out.flush(true);
   _exit(0);
 }
 
-int run_test(const std::string& name, const char* library) {
-  if (!receive_secret()) return 2;
-  if (!forbid_what_tests_never_need())
-    end_with("error", std::string("cannot restrict the test process: ") + std::strerror(errno));
-  void* handle = dlopen(library, RTLD_NOW | RTLD_LOCAL);
-  if (handle == nullptr) end_with("error", std::string("cannot load the code: ") + dlerror());
-  using Entry = const Implementation* (*)();
-  const auto entry = reinterpret_cast<Entry>(dlsym(handle, "springlab_submission_implementation"));
-  if (entry == nullptr) end_with("error", "the library has no task table");
-  use_submission(*entry());
-  if (!forbid_new_code()) end_with("error", "cannot restrict the test process after loading");
-  write_record("loaded", "");
+std::string own_program() {
+  char path[PATH_MAX] = {};
+  const ssize_t n = readlink("/proc/self/exe", path, sizeof path - 1);
+  return n > 0 ? std::string(path, std::size_t(n)) : "";
+}
 
+int work(const std::string& name, const std::string& library) {
+  static TranscriptWriter out(transcript_fd);
+  writer = &out;
+  const std::string program = own_program();
+  read_only_what_tests_need(program, library);  // where the kernel has Landlock
+  if (!forbid_what_tests_never_need(report_forbidden))
+    refuse(out, std::string("cannot restrict the test process: ") + std::strerror(errno));
+  // The table first (the library's calls of other tasks go to it), then the library.
+  static Implementation submission;
+  use_table(graded_task, recording(submission, out));
+  void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (handle == nullptr) refuse(out, std::string("cannot load the code: ") + dlerror());
+  using Bind = const Implementation* (*)(const Implementation*);
+  const auto bind = reinterpret_cast<Bind>(dlsym(handle, "springlab_submission_bind"));
+  if (bind == nullptr) refuse(out, "the library has no task table");
+  take_task(submission, *bind(springlab_dispatch), graded_task);
+  if (const std::string foreign = foreign_code(program, library); !foreign.empty())
+    refuse(out, "your code loaded or made code that is not its own (" + foreign + ")");
+  if (!forbid_new_code()) refuse(out, "cannot restrict the test process after loading");
+  out.event(Event::loaded);
+  out.flush(true);
   run_test_named(name);
+  out.event(Event::end);
+  out.flush(true);
+  _exit(0);
+}
+
+// The worker's resident memory, kB.
+long resident_kb(pid_t pid) {
+  std::ifstream statm("/proc/" + std::to_string(pid) + "/statm");
+  long size = 0, resident = 0;
+  statm >> size >> resident;
+  return resident * (sysconf(_SC_PAGESIZE) / 1024);
+}
+
+int run(const std::string& name, const std::string& worker, const std::string& library,
+        long resident_mb) {
+  if (!receive_secret()) return 2;
+  int ends[2];
+  if (pipe2(ends, O_CLOEXEC) != 0) return 2;
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(ends[1], transcript_fd);  // the worker's fd 3 is the transcript, not the grader's
+    const char* argv[] = {worker.c_str(), "--work", name.c_str(), library.c_str(), nullptr};
+    execv(argv[0], const_cast<char* const*>(argv));
+    _exit(127);
+  }
+  close(ends[1]);
+  bool memory = false;
+  TranscriptReader in(ends[0], [&] {
+    if (resident_mb > 0 && !memory && resident_kb(pid) > resident_mb * 1024) {
+      memory = true;
+      kill(pid, SIGKILL);
+    }
+  });
+  use_table(graded_task, replaying(in));
+  bool loaded = false, complete = false;
+  const auto expect = [&](Event want) {
+    try {
+      const Event e = in.event();
+      if (e == Event::forbidden) give_up("forbidden " + std::to_string(in.integer()));
+      if (e == Event::refused) give_up("refused " + in.text(4096));
+      if (e != want && !replay_failure()) give_up("the code did what the test did not ask for");
+      return e == want;
+    } catch (const ReplayStopped& stopped) {
+      give_up(stopped.what());
+      return false;
+    }
+  };
+  loaded = expect(Event::loaded);
+  if (loaded) run_test_named(name);
+  if (!replay_failure()) complete = expect(Event::end);
+  if (!complete) kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+
+  std::string worker_record =
+      "loaded " + std::to_string(loaded) + "\ncomplete " + std::to_string(complete) + "\n";
+  if (WIFSIGNALED(status)) worker_record += "signal " + std::to_string(WTERMSIG(status)) + "\n";
+  if (WIFEXITED(status)) worker_record += "exit " + std::to_string(WEXITSTATUS(status)) + "\n";
+  if (memory) worker_record += "memory " + std::to_string(resident_mb) + "\n";
+  if (replay_failure()) worker_record += "stopped " + *replay_failure() + "\n";
   const TestOutcome& outcome = test_outcome();
-  if (outcome.cases_run != 1)
-    end_with("error", "the test spec selected " + std::to_string(outcome.cases_run) + " tests");
-  end_with("verdict", std::string(outcome.passed() ? "pass " : "fail ") +
-                          std::to_string(outcome.assertions_passed) + " " +
-                          std::to_string(outcome.assertions_failed) + "\n" + outcome.first_failure);
+  const bool passed = outcome.cases_run == 1 && outcome.passed() && complete && WIFEXITED(status) &&
+                      WEXITSTATUS(status) == 0;
+  std::string first_failure = outcome.first_failure;
+  if (outcome.cases_run != 1 && loaded)
+    first_failure = "the test spec selected " + std::to_string(outcome.cases_run) + " tests";
+  std::cout.flush();
+  write_record("worker", worker_record);
+  write_record("verdict", std::string(passed ? "pass " : "fail ") +
+                              std::to_string(outcome.assertions_passed) + " " +
+                              std::to_string(outcome.assertions_failed) + "\n" + first_failure);
+  _exit(0);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc == 2 && std::strcmp(argv[1], "--list") == 0) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (argc == 2 && mode == "--list") {
     std::cout << list_tests();
     return 0;
   }
-  if (argc == 4 && std::strcmp(argv[1], "--run") == 0) return run_test(argv[2], argv[3]);
-  std::cerr
-      << "usage: springlab-grade-harness --list | --run NAME LIBRARY (springlab-grade runs it)\n";
+  if (argc == 4 && mode == "--work") return work(argv[2], argv[3]);
+  if ((argc == 5 || argc == 7) && mode == "--run")
+    return run(argv[2], argv[3], argv[4], argc == 7 ? std::atol(argv[6]) : 0);
+  std::cerr << "usage: " << argv[0] << " --list | --run NAME WORKER LIBRARY [--resident-mb MB] | "
+            << "--work NAME LIBRARY (springlab-grade runs it)\n";
   return 2;
 }

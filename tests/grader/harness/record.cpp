@@ -4,7 +4,6 @@
 
 #include <array>
 #include <cerrno>
-#include <cstring>
 #include <string>
 
 namespace springlab::grading {
@@ -43,32 +42,6 @@ void write_record(std::string_view kind, std::string_view payload) {
   record += ' ' + std::to_string(payload.size()) + '\n';
   record += payload;
   write_all(record.data(), record.size());
-}
-
-void write_record_from_signal(const char* kind, long number) {
-  char digits[9];
-  std::size_t count = 0;
-  unsigned long value = number < 0 ? 0 : static_cast<unsigned long>(number) % 1000000000;
-  do {
-    digits[count++] = char('0' + value % 10);
-    value /= 10;
-  } while (value > 0);
-  char line[128];
-  std::size_t at = 0;
-  const auto put = [&](const char* text, std::size_t size) {
-    for (std::size_t i = 0; i < size && at < sizeof line; ++i)
-      line[at++] = text[i];
-  };
-  put(secret.data(), secret_size);
-  put(" ", 1);
-  put(kind, std::strlen(kind));
-  put(" ", 1);
-  const char length = char('0' + count);  // a system call's number has fewer than 10 digits
-  put(&length, 1);
-  put("\n", 1);
-  while (count > 0)
-    put(&digits[--count], 1);
-  write_all(line, at);
 }
 
 }  // namespace springlab::grading

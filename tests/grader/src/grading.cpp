@@ -70,14 +70,12 @@ std::string kit_signature(const Kit& kit, const std::vector<TestInfo>& tests) {
     s << path.string() << ' ' << fs::file_size(path, error) << ' '
       << fs::last_write_time(path, error).time_since_epoch().count() << '\n';
   };
-  stamp(kit.plain.harness);
-  stamp(kit.sanitized.harness);
-  for (const auto& [name, object] : kit.reference_objects)
-    stamp(object);
-  for (const auto& [task, table] : kit.tables)
-    stamp(table);
-  for (const fs::path& path : kit.link_always)
-    stamp(path);
+  for (int task = 1; task <= 5; ++task) {
+    stamp(kit.programs.at(task));
+    stamp(kit.sanitized_programs.at(task));
+    for (const fs::path& part : kit.library_parts.at(task))
+      stamp(part);
+  }
   for (const TestInfo& test : tests)
     s << test.name << '\n';
   return s.str();
@@ -286,13 +284,8 @@ class Grader::Pipeline {
     // The submission's objects first, so that their copies of inline functions are the ones kept.
     for (const std::string& source : b->sources)
       c.argv.push_back(b->object(source, v).string());
-    for (const auto& [task, files] : kit_.task_files)
-      if (task != b->task)
-        for (const std::string& file : files)
-          c.argv.push_back(kit_.reference_objects.at(file).string());
-    c.argv.push_back(kit_.tables.at(b->task).string());
-    for (const fs::path& path : kit_.link_always)
-      c.argv.push_back(path.string());
+    for (const fs::path& part : kit_.library_parts.at(b->task))
+      c.argv.push_back(part.string());
     c.env = build_environment();
     c.directory = b->folder.string();
     c.limits = build_limits();
@@ -321,7 +314,14 @@ class Grader::Pipeline {
 
   Command test_command(const TestInfo& test, const Variant& v, const TaskBuild& b) const {
     Command c;
-    c.argv = {v.harness.string(), "--run", test.name, b.library(v).string()};
+    const bool sanitized = &v == &kit_.sanitized;
+    c.argv = {kit_.programs.at(test.task).string(), "--run", test.name,
+              (sanitized ? kit_.sanitized_programs : kit_.programs).at(test.task).string(),
+              b.library(v).string()};
+    if (sanitized) {
+      c.argv.push_back("--resident-mb");
+      c.argv.push_back(std::to_string(g_.settings_.memory_mb));
+    }
     c.env = plain_environment();
     c.env.insert(c.env.end(), v.env.begin(), v.env.end());
     c.directory = run_folder_.string();

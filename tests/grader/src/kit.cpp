@@ -35,8 +35,7 @@ struct Reader {
 Variant variant(const Reader& read, const toml::table& kit, const std::string& name) {
   const auto node = kit[name];
   return {name, read.texts(node["compile"], name + ".compile"),
-          read.texts(node["link"], name + ".link"), read.text(node["harness"], name + ".harness"),
-          read.texts(node["env"], name + ".env")};
+          read.texts(node["link"], name + ".link"), read.texts(node["env"], name + ".env")};
 }
 
 }  // namespace
@@ -65,21 +64,19 @@ Kit read_kit(const fs::path& file) {
   result.nm = read.text(kit["nm"], "nm");
   for (const std::string& folder : read.texts(kit["system_headers"], "system_headers"))
     result.system_headers.emplace_back(folder);
-  for (const std::string& path : read.texts(kit["link_always"], "link_always"))
-    result.link_always.emplace_back(path);
   result.plain = variant(read, kit, "plain");
   result.sanitized = variant(read, kit, "sanitized");
   for (int task = 1; task <= 5; ++task) {
     const std::string key = std::to_string(task);
     result.task_files[task] = read.texts(kit["tasks"][key], "tasks." + key);
-    result.tables[task] = read.text(kit["tables"][key], "tables." + key);
     if (result.task_files[task].empty()) read.fail("tasks." + key);
+    const std::vector<std::string> programs = read.texts(kit["programs"][key], "programs." + key);
+    if (programs.size() != 2) read.fail("programs." + key);
+    result.programs[task] = programs[0];
+    result.sanitized_programs[task] = programs[1];
+    for (const std::string& part : read.texts(kit["library"][key], "library." + key))
+      result.library_parts[task].emplace_back(part);
   }
-  const toml::table* reference = kit["reference"].as_table();
-  if (reference == nullptr) read.fail("reference");
-  for (const auto& [name, object] : *reference)
-    result.reference_objects[std::string(name.str())] = read.text(
-        toml::node_view<const toml::node>(object), "reference." + std::string(name.str()));
   return result;
 }
 

@@ -1,6 +1,6 @@
 // The kit as its build describes it to the grader (kit.toml, written by
-// tests/grader/CMakeLists.txt): where the harness, the reference objects and the headers are, and
-// how submission code is built.
+// tests/grader/CMakeLists.txt): where the test programs, the parts of a submission library and
+// the headers are, and how submission code is built.
 #pragma once
 
 #include <filesystem>
@@ -17,8 +17,7 @@ struct Variant {
   std::string name;                  ///< "plain" or "sanitized"
   std::vector<std::string> compile;  ///< the compiler and its flags, before -c FILE -o OBJ
   std::vector<std::string> link;     ///< the compiler and its flags, before -o LIB OBJECTS
-  fs::path harness;                  ///< the test program that loads the library
-  std::vector<std::string> env;      ///< extra environment of the test program
+  std::vector<std::string> env;      ///< extra environment of the test processes
 };
 
 struct Kit {
@@ -33,10 +32,10 @@ struct Kit {
   Variant plain, sanitized;
   /// Per task 1-5: its files, as "task1_two_masses/spring_damper.cpp".
   std::map<int, std::vector<std::string>> task_files;
-  /// Per solution file (same names): its reference object, in the submission namespace.
-  std::map<std::string, fs::path> reference_objects;
-  std::map<int, fs::path> tables;     ///< per task N: the table with N as the student's task
-  std::vector<fs::path> link_always;  ///< the library's entry point and the kit's task support
+  /// Per task: its program (the harness, and the plain worker) and its sanitized worker.
+  std::map<int, fs::path> programs, sanitized_programs;
+  /// Per task: what a submission library is linked from besides the submission's files.
+  std::map<int, std::vector<fs::path>> library_parts;
 
   /// The folder of task n, e.g. "task1_two_masses".
   std::string task_folder(int n) const;

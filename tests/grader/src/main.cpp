@@ -124,8 +124,10 @@ std::vector<Submission> find_all(const Options& options, const Kit& kit) {
 
 int grade(const Options& options) {
   const Kit kit = read_kit(options.kit);
-  std::vector<TestInfo> tests =
-      parse_test_list(run_trusted({kit.plain.harness.string(), "--list"}));
+  std::string listing;
+  for (const auto& [task, program] : kit.programs)
+    listing += run_trusted({program.string(), "--list"});
+  std::vector<TestInfo> tests = parse_test_list(listing);
   assign_points(tests, options.points.empty() ? kit.points : options.points);
   const std::vector<Submission> submissions = find_all(options, kit);
   Settings settings = options.settings;

@@ -58,6 +58,59 @@ std::string signal_text(int signal) {
   }
 }
 
+// The "key value" lines of the harness's record of how the worker ended.
+std::map<std::string, std::string> fields_of(const std::string& record) {
+  std::map<std::string, std::string> fields;
+  std::istringstream lines(record);
+  std::string line;
+  while (std::getline(lines, line)) {
+    const auto space = line.find(' ');
+    fields[line.substr(0, space)] = space == std::string::npos ? "" : line.substr(space + 1);
+  }
+  return fields;
+}
+
+const std::string forbidden_text =
+    "). While tests run, code may not start programs or threads, change files or signal other "
+    "processes";
+
+// Why the worker (the process running the submission's code) did not finish the test, in words;
+// "" when it did, and the test's own first failure is the reason.
+std::string worker_ending(const std::string& record, const std::string& output,
+                          const Limits& limits, const LimitsText& text) {
+  const auto w = fields_of(record);
+  const std::string stopped = w.count("stopped") > 0 ? w.at("stopped") : "";
+  if (stopped.rfind("forbidden ", 0) == 0)
+    return "stopped: your code asked the system for something tests never need (" +
+           system_call_name(std::atol(stopped.c_str() + 10)) + forbidden_text;
+  if (stopped.rfind("refused ", 0) == 0) return "not run: " + stopped.substr(8);
+  if (w.count("memory") > 0) return "used more than " + w.at("memory") + " MB of memory: stopped";
+  const bool finished = w.count("complete") > 0 && w.at("complete") == "1" && w.count("exit") > 0 &&
+                        w.at("exit") == "0";
+  if (finished && stopped.empty()) return "";
+  const std::string report = explain_sanitizer_report(output);
+  if (!report.empty()) return report;
+  if (w.count("signal") > 0) {
+    const int signal = std::atoi(w.at("signal").c_str());
+    if (signal == SIGXCPU || (signal == SIGKILL && stopped.empty()))
+      return "used more than " + seconds(std::ceil(limits.cpu_seconds)) +
+             " of processor time (the limit is " + text.time + "): stopped";
+    if (signal == SIGSYS)
+      return "stopped: your code asked the system for something tests never need" +
+             forbidden_text.substr(1);
+    if (signal != SIGKILL) return "crashed: " + signal_text(signal);
+  }
+  if (w.count("loaded") > 0 && w.at("loaded") == "0")
+    return "ended while your code was being loaded, before the test began (" +
+           (w.count("exit") > 0 ? "exit status " + w.at("exit") : std::string("killed")) +
+           "): does the initialiser of a global variable call exit()?";
+  if (!finished && w.count("exit") > 0)
+    return "exited before the test finished (exit status " + w.at("exit") +
+           "): does your code call exit(), _exit() or abort()?";
+  // The worker finished, but its answers did not fit the test.
+  return "your code's answers could not be checked: " + stopped;
+}
+
 }  // namespace
 
 std::string new_secret() {
@@ -102,39 +155,26 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
       break;
   }
   const auto records = records_of(o.records, secret);
-  if (const auto it = records.find("forbidden"); it != records.end())
-    return {false, "stopped: your code asked the system for something tests never need (" +
-                       system_call_name(std::atol(it->second.c_str())) +
-                       "). While grading, code may not start programs or threads, change files "
-                       "or signal other processes"};
   if (const auto it = records.find("error"); it != records.end())
     return {false, "the test could not run: " + it->second};
   const auto verdict = records.find("verdict");
-  if (verdict != records.end() && o.exited && o.exit_code == 0) {
-    const std::string& payload = verdict->second;
-    const bool passed = payload.rfind("pass ", 0) == 0;
-    const auto newline = payload.find('\n');
-    std::string message = newline == std::string::npos ? "" : payload.substr(newline + 1);
-    if (!passed && message.empty()) message = "no check ran";
-    if (message.find("std::bad_alloc") != std::string::npos && limits.address_space_mb > 0)
-      message +=
-          "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) + " MB)";
-    return {passed, passed ? "" : message};
-  }
-  const std::string report = explain_sanitizer_report(o.output);
-  if (!report.empty()) return {false, report};
-  if (!o.exited && o.signal == SIGSYS)  // the filter's own signal, when the handler could not run
-    return {false,
-            "stopped: your code asked the system for something tests never need. While "
-            "tests run, code may not start programs or threads, change files or signal "
-            "other processes"};
-  if (!o.exited) return {false, "crashed: " + signal_text(o.signal)};
-  if (records.count("loaded") == 0)
-    return {false, "ended while your code was being loaded, before the test began (exit status " +
-                       std::to_string(o.exit_code) +
-                       "): does the initialiser of a global variable call exit()?"};
-  return {false, "exited before the test finished (exit status " + std::to_string(o.exit_code) +
-                     "): does your code call exit(), _exit() or abort()?"};
+  const auto worker_record = records.find("worker");
+  if (verdict == records.end() || worker_record == records.end() || !o.exited || o.exit_code != 0)
+    return {false, "the test program ended without a verdict (" +
+                       (o.exited ? "exit status " + std::to_string(o.exit_code)
+                                 : "signal " + std::to_string(o.signal)) +
+                       "): the kit's fault, not yours; please report it"};
+  const std::string& payload = verdict->second;
+  const bool passed = payload.rfind("pass ", 0) == 0;
+  if (passed) return {true, ""};
+  const auto newline = payload.find('\n');
+  std::string message = newline == std::string::npos ? "" : payload.substr(newline + 1);
+  if (message.empty()) message = "no check ran";
+  const std::string why = worker_ending(worker_record->second, o.output, limits, text);
+  if (!why.empty()) return {false, why};
+  if (message.find("std::bad_alloc") != std::string::npos && limits.address_space_mb > 0)
+    message += "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) + " MB)";
+  return {false, message};
 }
 
 }  // namespace springlab::grader

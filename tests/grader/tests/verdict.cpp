@@ -41,37 +41,63 @@ TEST_CASE("Secrets: 32 hex digits, a new one each time", "[verdict]") {
   CHECK(a != b);
 }
 
-TEST_CASE("A verdict with the secret and a clean exit counts", "[verdict]") {
-  const std::string loaded = record("loaded", "");
-  CHECK(verdict_of(ended(0, loaded + record("verdict", "pass 12 0\n"))).passed);
-  const RunVerdict failed = verdict_of(ended(0, loaded + record("verdict", "fail 3 1\nwhy")));
+// The harness's records after a worker that finished cleanly, or ended as `worker` says.
+std::string records(const std::string& verdict,
+                    const std::string& worker = "loaded 1\ncomplete 1\nexit 0\n",
+                    const std::string& key = secret) {
+  return record("worker", worker, key) + record("verdict", verdict, key);
+}
+
+TEST_CASE("A verdict with the secret, from a harness that ended cleanly, counts", "[verdict]") {
+  CHECK(verdict_of(ended(0, records("pass 12 0\n"))).passed);
+  const RunVerdict failed = verdict_of(ended(0, records("fail 3 1\nwhy")));
   CHECK_FALSE(failed.passed);
   CHECK(failed.message == "why");
 }
 
-TEST_CASE("Records without the secret, or a verdict followed by anything but exit 0, never pass",
+TEST_CASE("Records without the secret, or from a harness that did not end cleanly, never pass",
           "[verdict]") {
-  const std::string forged = record("verdict", "pass 12 0\n", std::string(32, '0'));
-  const RunVerdict v =
-      verdict_of(ended(0, record("loaded", "") + forged, "8 of 8 tests pass.\nAll tests passed\n"));
-  CHECK_FALSE(v.passed);
-  CHECK_THAT(v.message, Catch::Contains("exited before the test finished (exit status 0)"));
-  CHECK_FALSE(verdict_of(ended(1, record("verdict", "pass 12 0\n"))).passed);
-  // Garbage before the harness's records does not hide them, nor make them count more.
-  CHECK(verdict_of(ended(0, "junk " + secret + " nonsense\n" + record("verdict", "pass 1 0\n")))
-            .passed);
+  const RunVerdict forged = verdict_of(
+      ended(0, records("pass 12 0\n", "loaded 1\ncomplete 1\nexit 0\n", std::string(32, '0')),
+            "8 of 8 tests pass.\nAll tests passed\n"));
+  CHECK_FALSE(forged.passed);
+  CHECK_THAT(forged.message, Catch::Contains("ended without a verdict"));
+  CHECK_FALSE(verdict_of(ended(1, records("pass 12 0\n"))).passed);
+  // Bytes before the records neither hide them nor make them count more.
+  CHECK(verdict_of(ended(0, "junk " + secret + " nonsense\n" + records("pass 1 0\n"))).passed);
 }
 
-TEST_CASE("Every other ending is a failure that says why", "[verdict]") {
+TEST_CASE("How the worker ended explains a failure better than the test's first failure",
+          "[verdict]") {
+  const auto why = [](const std::string& worker, const std::string& output = "") {
+    return verdict_of(
+               ended(0, records("fail 0 1\nthrew: the code under test stopped", worker), output))
+        .message;
+  };
+  CHECK_THAT(why("loaded 1\ncomplete 0\nsignal 11\nstopped the code under test stopped\n"),
+             Catch::StartsWith("crashed: segmentation fault"));
+  CHECK_THAT(why("loaded 0\ncomplete 0\nexit 0\nstopped the code under test stopped\n"),
+             Catch::Contains("ended while your code was being loaded"));
+  CHECK_THAT(why("loaded 1\ncomplete 0\nexit 0\nstopped the code under test stopped\n"),
+             Catch::Contains("exited before the test finished (exit status 0)"));
+  CHECK_THAT(why("loaded 1\ncomplete 0\nexit 0\nstopped forbidden 59\n"),
+             Catch::Contains("(" + system_call_name(59) + ")"));
+  CHECK_THAT(why("loaded 0\ncomplete 0\nexit 0\nstopped refused your code loaded x\n"),
+             Catch::Contains("not run: your code loaded x"));
+  CHECK_THAT(why("loaded 1\ncomplete 0\nsignal 9\nmemory 1024\n"),
+             Catch::Contains("used more than 1024 MB of memory"));
+  CHECK_THAT(why("loaded 1\ncomplete 1\nexit 0\nstopped call 3 was shear_springs\n"),
+             Catch::Contains("could not be checked: call 3 was shear_springs"));
+  CHECK(why("loaded 1\ncomplete 1\nexit 0\n") == "threw: the code under test stopped");
+  CHECK_THAT(why("loaded 1\ncomplete 0\nexit 1\n",
+                 "==1==ERROR: AddressSanitizer: SEGV on unknown address 0x0\n"),
+             Catch::StartsWith("memory error: an access to an address"));
+}
+
+TEST_CASE("Limits the grader enforces on the test's processes say what was hit", "[verdict]") {
   Outcome crashed;
   crashed.signal = SIGSEGV;
-  CHECK_THAT(verdict_of(crashed).message, Catch::StartsWith("crashed: segmentation fault"));
-  CHECK_THAT(verdict_of(ended(0, "")).message,
-             Catch::Contains("ended while your code was being loaded"));
-  CHECK_THAT(verdict_of(ended(0, record("forbidden", "59"))).message,
-             Catch::Contains("(" + system_call_name(59) + ")"));
-  CHECK_THAT(verdict_of(ended(0, record("error", "cannot load the code: x"))).message,
-             Catch::Contains("the test could not run: cannot load the code: x"));
+  CHECK_THAT(verdict_of(crashed).message, Catch::Contains("ended without a verdict"));
   Outcome slow;
   slow.stopped = Stop::wall_time;
   slow.wall_seconds = 2.04;

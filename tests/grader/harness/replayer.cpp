@@ -1,0 +1,218 @@
+#include "replayer.hpp"
+
+#include "springlab/errors.hpp"
+
+namespace springlab::grading {
+namespace {
+
+TranscriptReader* in = nullptr;
+std::optional<std::string> failure;
+long calls = 0;  // replayed so far, to say which one failed
+
+// Something for Catch2 to report as an unknown exception, as the worker's was.
+struct ForeignException {};
+
+const char* name_of(Function f) {
+  static const char* names[] = {"spring_force",
+                                "damper_force",
+                                "explicit_euler_step",
+                                "structural_springs",
+                                "accumulate_spring_forces",
+                                "shear_springs",
+                                "verlet_step",
+                                "bend_springs",
+                                "add_gravity",
+                                "add_wind",
+                                "hold_pinned"};
+  return names[std::size_t(f)];
+}
+
+[[noreturn]] void stop(const std::string& why) {
+  give_up(why);
+  throw ReplayStopped(why);
+}
+
+// The next event, which must be `want`; the worker's own stops end the replay with their reason.
+Event next(std::initializer_list<Event> want) {
+  Event e{};
+  try {
+    e = in->event();
+  } catch (const ReplayStopped& stopped) {
+    stop(stopped.what());
+  }
+  if (e == Event::forbidden) stop("forbidden " + std::to_string(in->integer()));
+  if (e == Event::refused) stop("refused " + in->text(4096));
+  for (const Event w : want)
+    if (e == w) return e;
+  stop("the code's answers do not fit this test (event " + std::to_string(int(e)) + ")");
+}
+
+[[noreturn]] void rethrow_relayed(const std::exception_ptr& model_exception) {
+  const auto kind = Thrown(in->byte());
+  const int task = int(in->integer());
+  const std::string message = in->text(4096);
+  switch (kind) {
+    case Thrown::not_implemented:
+      throw NotImplemented(message, task);
+    case Thrown::step_failed:
+      throw StepFailed(message);
+    case Thrown::model:
+      if (model_exception) std::rethrow_exception(model_exception);
+      stop("the code says it passed on an error of the model, but the model raised none");
+    case Thrown::standard:
+      throw std::runtime_error(message);
+    case Thrown::other:
+      throw ForeignException{};
+  }
+  stop("an exception of an unknown kind");
+}
+
+// Replays one call: its inputs' hash must match; callbacks are run on the harness's own model
+// and must agree with the worker's; then the outputs are read into `outputs`.
+template <class Read>
+void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model, Read read) {
+  if (failure) throw ReplayStopped(*failure);
+  ++calls;
+  next({Event::call});
+  const auto function = Function(in->byte());
+  const auto hash = std::uint64_t(in->integer());
+  if (function != f || hash != inputs)
+    stop("call " + std::to_string(calls) + " of the task's functions was " + name_of(function) +
+         (function == f ? " with other inputs" : "") + " in the run of your code, but " +
+         name_of(f) + " in the test (does your code change an input it may only read?)");
+  std::exception_ptr model_exception;
+  for (;;) {
+    switch (next({Event::callback, Event::result, Event::thrown})) {
+      case Event::callback: {
+        if (model == nullptr) stop(std::string(name_of(f)) + " called a model it was not given");
+        Vectors r, v;
+        in->get(r, -1);
+        in->get(v, r.cols());
+        try {
+          const Vectors& a = (*model)(r, v);
+          next({Event::callback_return});
+          if (std::uint64_t(in->integer()) != hash_of(a))
+            stop("the model gave the code other accelerations than it gives the test");
+        } catch (const ReplayStopped&) {
+          throw;
+        } catch (...) {
+          model_exception = std::current_exception();
+          next({Event::callback_throw});
+        }
+        break;
+      }
+      case Event::result:
+        return read();
+      default:
+        rethrow_relayed(model_exception);
+    }
+  }
+}
+
+Vec2 vec2() {
+  Vec2 x;
+  in->get(x);
+  return x;
+}
+
+std::vector<Spring> springs() {
+  std::vector<Spring> x;
+  in->get(x);
+  return x;
+}
+
+Vec2 spring_force(const Vec2& r_p, const Vec2& r_q, double k, double rest_length) {
+  Vec2 f;
+  replay(Function::spring_force, hash_of(r_p, r_q, k, rest_length), nullptr, [&] { f = vec2(); });
+  return f;
+}
+
+Vec2 damper_force(const Vec2& v_p, const Vec2& v_q, double b) {
+  Vec2 f;
+  replay(Function::damper_force, hash_of(v_p, v_q, b), nullptr, [&] { f = vec2(); });
+  return f;
+}
+
+void explicit_euler_step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v) {
+  replay(Function::explicit_euler_step, hash_of(h, r, v), &a, [&] {
+    in->get(r, r.cols());
+    in->get(v, v.cols());
+  });
+}
+
+std::vector<Spring> structural_springs(int rows, int cols, const SpringFamilyParameters& p) {
+  std::vector<Spring> s;
+  replay(Function::structural_springs, hash_of(rows, cols, p), nullptr, [&] { s = springs(); });
+  return s;
+}
+
+void accumulate_spring_forces(const std::vector<Spring>& s, const Vectors& r, const Vectors& v,
+                              Vectors& force) {
+  replay(Function::accumulate_spring_forces, hash_of(s, r, v, force), nullptr,
+         [&] { in->get(force, force.cols()); });
+}
+
+std::vector<Spring> shear_springs(int rows, int cols, const SpringFamilyParameters& p) {
+  std::vector<Spring> s;
+  replay(Function::shear_springs, hash_of(rows, cols, p), nullptr, [&] { s = springs(); });
+  return s;
+}
+
+void verlet_step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v,
+                 VerletHistory& history) {
+  replay(Function::verlet_step, hash_of(h, r, v, history), &a, [&] {
+    in->get(r, r.cols());
+    in->get(v, v.cols());
+    in->get(history, r.cols());
+  });
+}
+
+std::vector<Spring> bend_springs(int rows, int cols, const SpringFamilyParameters& p) {
+  std::vector<Spring> s;
+  replay(Function::bend_springs, hash_of(rows, cols, p), nullptr, [&] { s = springs(); });
+  return s;
+}
+
+void add_gravity(const Eigen::VectorXd& mass, const Vec2& g, Vectors& force) {
+  replay(Function::add_gravity, hash_of(mass, g, force), nullptr,
+         [&] { in->get(force, force.cols()); });
+}
+
+void add_wind(const WindField&, double t, const Vectors& r, const Vectors& v, Vectors& force) {
+  replay(Function::add_wind, hash_of(t, r, v, force), nullptr,
+         [&] { in->get(force, force.cols()); });
+}
+
+void hold_pinned(const std::vector<bool>& pinned, Vectors& acceleration) {
+  replay(Function::hold_pinned, hash_of(pinned, acceleration), nullptr,
+         [&] { in->get(acceleration, acceleration.cols()); });
+}
+
+}  // namespace
+
+Implementation replaying(TranscriptReader& reader) {
+  in = &reader;
+  return {"submission",
+          0,
+          spring_force,
+          damper_force,
+          explicit_euler_step,
+          structural_springs,
+          accumulate_spring_forces,
+          shear_springs,
+          verlet_step,
+          bend_springs,
+          add_gravity,
+          add_wind,
+          hold_pinned};
+}
+
+const std::optional<std::string>& replay_failure() {
+  return failure;
+}
+
+void give_up(const std::string& why) {
+  if (!failure) failure = why;
+}
+
+}  // namespace springlab::grading
