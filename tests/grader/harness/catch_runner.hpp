@@ -7,8 +7,8 @@
 
 namespace springlab::grading {
 
-/// Every test: "[tag][tag]<TAB>name" lines, in the order they were declared.
-std::string list_tests();
+/// Every test tagged [task<task>]: "[tag][tag]<TAB>name" lines, in the order they were declared.
+std::string list_tests(int task);
 
 /// Runs the one test named exactly `name` with the reporter "record" (reporter.hpp).
 void run_test_named(const std::string& name);

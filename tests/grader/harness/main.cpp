@@ -1,6 +1,6 @@
 // springlab-grade-taskN: the kit's tests of task N (SPRINGLAB_GRADED_TASK) for the grader
 // (tests/grader/src/), in two roles, each in a process of its own:
-//   --list                        every test: "[tags]<TAB>name", one per line
+//   --list                        every test of task N: "[tags]<TAB>name", one per line
 //   --run NAME WORKER LIBRARY [--resident-mb MB]
 //       the harness: starts WORKER --work NAME LIBRARY, runs test NAME without any submission
 //       code, answering the task's functions from the worker's transcript (transcript.hpp), and
@@ -157,7 +157,7 @@ int run(const std::string& name, const std::string& worker, const std::string& l
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (argc == 2 && mode == "--list") {
-    std::cout << list_tests();
+    std::cout << list_tests(graded_task);
     return 0;
   }
   if (argc == 4 && mode == "--work") return work(argv[2], argv[3]);

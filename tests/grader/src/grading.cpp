@@ -63,6 +63,11 @@ std::string stop_text(Stop stop) {
   return "";
 }
 
+std::string read_file(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 std::string kit_signature(const Kit& kit, const std::vector<TestInfo>& tests) {
   std::ostringstream s;
   const auto stamp = [&](const fs::path& path) {
@@ -189,15 +194,31 @@ class Grader::Pipeline {
       }
     b->tests_open = int(b->result.tests.size());
     fs::create_directories(b->folder);
-    compile(b, kit_.plain, [this, b](bool ok, const std::string& messages) {
-      if (!ok) return fail_all(b, "does not compile:\n" + messages);
-      b->result.warnings = messages;
-      check(b);
-    });
+    compile(b, kit_.plain,
+            [this, b](bool ok, const std::string& messages, const std::string& problem) {
+              if (!ok) return fail_all(b, "does not compile:\n" + messages);
+              if (!problem.empty()) return fail_all(b, "not graded: " + problem);
+              b->result.warnings = messages;
+              check(b);
+            });
   }
 
  private:
   using Then = std::function<void(bool ok, const std::string& messages)>;
+  // ok, the compiler's messages, and what the code may not include ("" when nothing).
+  using Compiled = std::function<void(bool, const std::string&, const std::string&)>;
+
+  // What compiling one file gave, kept for any later copy whose own files that the compiler read
+  // are the same, byte for byte: a mutant, or a student's untouched file, is compiled once.
+  struct Object {
+    fs::path path;
+    std::vector<std::pair<std::string, std::string>> read;  // the copy's files read: name, bytes
+    bool ok = false;
+    std::string messages, problem;
+  };
+  std::map<std::string, std::vector<Object>> objects_;  // by run, file, its bytes, the copy's names
+  // Compilations under way, by the same key: what waits for each to end, to look again.
+  std::map<std::string, std::vector<std::function<void()>>> compiling_;
   const Grader& g_;
   const Kit& kit_;
   ProcessPool& pool_;
@@ -212,44 +233,79 @@ class Grader::Pipeline {
     return env;
   }
 
-  void compile(const std::shared_ptr<TaskBuild>& b, const Variant& v, Then then) {
+  void compile(const std::shared_ptr<TaskBuild>& b, const Variant& v, Compiled then) {
     struct Stage {
       std::size_t open = 0;
       bool ok = true;
-      std::string messages;
+      std::string messages, problem;
     };
     auto stage = std::make_shared<Stage>();
     stage->open = b->sources.size();
-    for (const std::string& source : b->sources) {
-      const fs::path object = b->object(source, v);
-      Command c;
-      c.argv = v.compile;
-      for (const std::string& arg :
-           {std::string("-MD"), std::string("-MF"), object.string() + ".d", std::string("-c"),
-            (b->copy / source).string(), std::string("-o"), object.string()})
-        c.argv.push_back(arg);
-      c.env = build_environment();
-      c.directory = b->copy.string();
-      c.limits = build_limits();
-      pool_.add(std::move(c), [this, b, stage, then](Outcome o) {
-        const bool ok = o.exited && o.exit_code == 0;
-        std::string messages = stop_text(o.stopped) + student_paths(o.output, b->copy, kit_.root);
-        if (!o.start_error.empty()) messages += o.start_error + "\n";
-        stage->ok = stage->ok && ok;
-        stage->messages += messages;
-        if (--stage->open == 0) then(stage->ok, first_lines(stage->messages, 60));
+    for (const std::string& source : b->sources)
+      compile_one(b, v, source, [stage, then](const Object& o) {
+        stage->ok = stage->ok && o.ok;
+        stage->messages += o.messages;
+        if (stage->problem.empty()) stage->problem = o.problem;
+        if (--stage->open == 0) then(stage->ok, first_lines(stage->messages, 60), stage->problem);
       });
-    }
   }
 
-  // What the code included (from the dependency files) and what its objects name (from nm).
-  void check(const std::shared_ptr<TaskBuild>& b) {
-    for (const std::string& source : b->sources)
-      for (const fs::path& file :
-           read_dependencies(b->object(source, kit_.plain).string() + ".d")) {
-        const std::string problem = include_problem(file, b->copy, kit_.pch, kit_);
-        if (!problem.empty()) return fail_all(b, "not graded: " + source + ": " + problem);
+  void compile_one(const std::shared_ptr<TaskBuild>& b, const Variant& v, const std::string& source,
+                   std::function<void(const Object&)> done) {
+    std::string key = v.name + '\0' + source + '\0' + read_file(b->copy / source);
+    for (const fs::directory_entry& file : fs::directory_iterator(b->copy))
+      key += '\0' + file.path().filename().string();  // what an #if __has_include could see
+    const fs::path path = b->object(source, v);
+    for (const Object& o : objects_[key])
+      if (std::all_of(o.read.begin(), o.read.end(), [&](const auto& file) {
+            return read_file(b->copy / file.first) == file.second;
+          })) {
+        if (o.ok) fs::copy_file(o.path, path, fs::copy_options::overwrite_existing);
+        return done(o);
       }
+    if (const auto it = compiling_.find(key); it != compiling_.end()) {
+      it->second.push_back([=, this] { compile_one(b, v, source, done); });
+      return;
+    }
+    compiling_[key];
+    Command c;
+    c.argv = v.compile;
+    // Paths in the object (debug information, __FILE__) as tasks/..., wherever the copy is: an
+    // object made for one submission may serve another, and must not name the first.
+    const std::string top = b->copy.parent_path().parent_path().string();
+    for (const std::string& arg : {"-ffile-prefix-map=" + top + "=.", std::string("-MD"),
+                                   std::string("-MF"), path.string() + ".d", std::string("-c"),
+                                   (b->copy / source).string(), std::string("-o"), path.string()})
+      c.argv.push_back(arg);
+    c.env = build_environment();
+    c.directory = b->copy.string();
+    c.limits = build_limits();
+    pool_.add(std::move(c), [this, b, &v, source, key, path, done](Outcome outcome) {
+      Object o;
+      o.path = path;
+      o.ok = outcome.exited && outcome.exit_code == 0;
+      o.messages = stop_text(outcome.stopped) + student_paths(outcome.output, b->copy, kit_.root);
+      if (!outcome.start_error.empty()) o.messages += outcome.start_error + "\n";
+      const fs::path copy = fs::weakly_canonical(b->copy);
+      for (const fs::path& file : read_dependencies(path.string() + ".d")) {
+        const fs::path inside = fs::weakly_canonical(file).lexically_relative(copy);
+        if (!inside.empty() && *inside.begin() != "..")
+          o.read.emplace_back(inside.string(), read_file(copy / inside));
+        const std::string problem = include_problem(file, b->copy, kit_.pch, kit_);
+        if (&v == &kit_.plain && o.problem.empty() && !problem.empty())
+          o.problem = source + ": " + problem;
+      }
+      objects_[key].push_back(o);
+      const std::vector<std::function<void()>> waiting = std::move(compiling_[key]);
+      compiling_.erase(key);
+      done(o);
+      for (const auto& again : waiting)
+        again();
+    });
+  }
+
+  // What the objects name (from nm); then the library.
+  void check(const std::shared_ptr<TaskBuild>& b) {
     Command c;
     c.argv = {kit_.nm.string(), "-P", "-A"};
     for (const std::string& source : b->sources)
@@ -296,7 +352,7 @@ class Grader::Pipeline {
   }
 
   void build_sanitized(const std::shared_ptr<TaskBuild>& b) {
-    compile(b, kit_.sanitized, [this, b](bool ok, const std::string& messages) {
+    compile(b, kit_.sanitized, [this, b](bool ok, const std::string& messages, const std::string&) {
       if (!ok) return sanitized_ready(b, "it does not compile:\n" + messages);
       link(b, kit_.sanitized, [this, b](bool linked, const std::string& link_messages) {
         sanitized_ready(b, linked ? "" : "it does not link:\n" + link_messages);
