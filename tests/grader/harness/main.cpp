@@ -56,10 +56,13 @@ std::string own_program() {
   return n > 0 ? std::string(path, std::size_t(n)) : "";
 }
 
-int work(const std::string& name, const std::string& library) {
+int work(const std::string& name, const std::string& given) {
   static TranscriptWriter out(transcript_fd);
   writer = &out;
   const std::string program = own_program();
+  // As /proc/self/maps names it, which foreign_code() compares with.
+  char resolved[PATH_MAX] = {};
+  const std::string library = realpath(given.c_str(), resolved) != nullptr ? resolved : given;
   read_only_what_tests_need(program, library);  // where the kernel has Landlock
   if (!forbid_what_tests_never_need(report_forbidden))
     refuse(out, std::string("cannot restrict the test process: ") + std::strerror(errno));

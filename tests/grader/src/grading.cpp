@@ -129,7 +129,7 @@ struct Grader::TaskBuild {
   std::vector<std::string> sources;  // the kit's files of the task, compiled
   TaskResult result;
   std::vector<int> passed_plain;  // tests waiting for the sanitized library
-  bool sanitized_ready = false;
+  bool sanitized_started = false, sanitized_ready = false;
   std::string sanitized_problem;  // set when the sanitized build failed
   int tests_open = 0;
   std::vector<std::function<void()>> on_finish;
@@ -327,7 +327,6 @@ class Grader::Pipeline {
         if (!ok) return fail_all(b, "does not link:\n" + messages);
         for (int i = 0; i < int(b->result.tests.size()); ++i)
           run_plain(b, i);
-        build_sanitized(b);
       });
     });
   }
@@ -401,6 +400,12 @@ class Grader::Pipeline {
       t.seconds = o.wall_seconds;
       if (!t.passed) return settle(b);
       if (b->sanitized_ready) return run_sanitized(b, index);
+      // The sanitized library is built once a test has passed plainly: code that passes none
+      // needs none.
+      if (b->passed_plain.empty() && !b->sanitized_started) {
+        b->sanitized_started = true;
+        build_sanitized(b);
+      }
       b->passed_plain.push_back(index);
     });
   }
