@@ -69,8 +69,10 @@ Event next(std::initializer_list<Event> want) {
 
 // Replays one call: its inputs' hash must match; callbacks are run on the harness's own model
 // and must agree with the worker's; then the outputs are read into `outputs`.
+// `columns`: how many particles the model's state holds (the step's own number).
 template <class Read>
-void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model, Read read) {
+void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model, Read read,
+            Eigen::Index columns = -1) {
   if (failure) throw ReplayStopped(*failure);
   ++calls;
   next({Event::call});
@@ -86,8 +88,8 @@ void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model,
       case Event::callback: {
         if (model == nullptr) stop(std::string(name_of(f)) + " called a model it was not given");
         Vectors r, v;
-        in->get(r, -1);
-        in->get(v, r.cols());
+        in->get(r, columns);
+        in->get(v, columns);
         try {
           const Vectors& a = (*model)(r, v);
           next({Event::callback_return});
@@ -134,10 +136,13 @@ Vec2 damper_force(const Vec2& v_p, const Vec2& v_q, double b) {
 }
 
 void explicit_euler_step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v) {
-  replay(Function::explicit_euler_step, hash_of(h, r, v), &a, [&] {
-    in->get(r, r.cols());
-    in->get(v, v.cols());
-  });
+  replay(
+      Function::explicit_euler_step, hash_of(h, r, v), &a,
+      [&] {
+        in->get(r, r.cols());
+        in->get(v, v.cols());
+      },
+      r.cols());
 }
 
 std::vector<Spring> structural_springs(int rows, int cols, const SpringFamilyParameters& p) {
@@ -160,11 +165,14 @@ std::vector<Spring> shear_springs(int rows, int cols, const SpringFamilyParamete
 
 void verlet_step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v,
                  VerletHistory& history) {
-  replay(Function::verlet_step, hash_of(h, r, v, history), &a, [&] {
-    in->get(r, r.cols());
-    in->get(v, v.cols());
-    in->get(history, r.cols());
-  });
+  replay(
+      Function::verlet_step, hash_of(h, r, v, history), &a,
+      [&] {
+        in->get(r, r.cols());
+        in->get(v, v.cols());
+        in->get(history, r.cols());
+      },
+      r.cols());
 }
 
 std::vector<Spring> bend_springs(int rows, int cols, const SpringFamilyParameters& p) {

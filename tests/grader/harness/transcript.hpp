@@ -9,8 +9,10 @@
 #include "springlab/parameters.hpp"
 #include "springlab/types.hpp"
 
+#include <chrono>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -110,7 +112,8 @@ class ReplayStopped : public std::runtime_error {
 /// the test expects, so that no transcript can make the harness allocate without bound.
 class TranscriptReader {
  public:
-  /// `watch` is called about every 50 ms while waiting (the harness checks the worker's memory).
+  /// `watch` is called every 20 ms or so while the transcript is read (the harness checks the
+  /// worker's memory with it).
   TranscriptReader(int fd, std::function<void()> watch) : fd_(fd), watch_(std::move(watch)) {}
   Event event();
   std::uint8_t byte();
@@ -127,6 +130,7 @@ class TranscriptReader {
   void read(void* data, std::size_t size);
   int fd_;
   std::function<void()> watch_;
+  std::chrono::steady_clock::time_point last_watch_{};
   std::string buffer_;
   std::size_t at_ = 0;
   bool ended_ = false;

@@ -41,8 +41,9 @@ std::string first_lines(const std::string& text, std::size_t count) {
 // Paths in the compiler's messages as the student knows them: tasks/task1_.../file.cpp and
 // common/include/..., not where the grader keeps its copy or where the kit lies.
 std::string student_paths(std::string text, const fs::path& copy, const fs::path& kit) {
-  for (const std::string& prefix :
-       {copy.parent_path().parent_path().string() + "/", kit.string() + "/"})
+  const fs::path work = copy.parent_path().parent_path().parent_path().parent_path();
+  for (const std::string& prefix : {copy.parent_path().parent_path().string() + "/",
+                                    work.string() + "/builds/", kit.string() + "/"})
     for (auto at = text.find(prefix); at != std::string::npos; at = text.find(prefix, at))
       text.erase(at, prefix.size());
   return text;
@@ -196,8 +197,9 @@ class Grader::Pipeline {
     fs::create_directories(b->folder);
     compile(b, kit_.plain,
             [this, b](bool ok, const std::string& messages, const std::string& problem) {
-              if (!ok) return fail_all(b, "does not compile:\n" + messages);
+              // A file it may not include is refused whether the code compiles or not.
               if (!problem.empty()) return fail_all(b, "not graded: " + problem);
+              if (!ok) return fail_all(b, "does not compile:\n" + messages);
               b->result.warnings = messages;
               check(b);
             });
@@ -278,7 +280,7 @@ class Grader::Pipeline {
                                    (b->copy / source).string(), std::string("-o"), path.string()})
       c.argv.push_back(arg);
     c.env = build_environment();
-    c.directory = b->copy.string();
+    c.directory = top;  // so that the objects name their files ./tasks/... (see above)
     c.limits = build_limits();
     pool_.add(std::move(c), [this, b, &v, source, key, path, done](Outcome outcome) {
       Object o;
@@ -292,9 +294,13 @@ class Grader::Pipeline {
         if (!inside.empty() && *inside.begin() != "..")
           o.read.emplace_back(inside.string(), read_file(copy / inside));
         const std::string problem = include_problem(file, b->copy, kit_.pch, kit_);
-        if (&v == &kit_.plain && o.problem.empty() && !problem.empty())
-          o.problem = source + ": " + problem;
+        if (o.problem.empty() && !problem.empty()) o.problem = source + ": " + problem;
       }
+      // Never the compiler's words about a file the submission may not read: they quote it.
+      if (quotes_foreign_file(outcome.output, b->copy))
+        o.messages =
+            "(the compiler's messages are not shown: they quote a file that is not "
+            "your submission's)\n";
       objects_[key].push_back(o);
       const std::vector<std::function<void()>> waiting = std::move(compiling_[key]);
       compiling_.erase(key);
@@ -302,6 +308,20 @@ class Grader::Pipeline {
       for (const auto& again : waiting)
         again();
     });
+  }
+
+  // True when the compiler's messages name a file outside the copy, the kit's headers and the
+  // system's (a message quotes the line it is about).
+  bool quotes_foreign_file(const std::string& messages, const fs::path& copy) const {
+    std::istringstream lines(messages);
+    std::string line;
+    while (std::getline(lines, line))
+      for (auto at = line.find('/'); at != std::string::npos; at = line.find('/', at + 1)) {
+        if (at > 0 && line[at - 1] != ' ') continue;  // a path starts a word
+        const std::string path = line.substr(at, line.find_first_of(": ", at) - at);
+        if (!include_problem(path, copy, kit_.pch, kit_).empty()) return true;
+      }
+    return false;
   }
 
   // What the objects name (from nm); then the library.

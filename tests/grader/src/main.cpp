@@ -115,14 +115,26 @@ std::vector<Submission> find_all(const Options& options, const Kit& kit) {
     Submission s = find_submission(folder, kit);
     const auto [it, fresh] = seen.emplace(s.name, folder);
     if (!fresh)
-      throw UsageError("two submissions would share the name '" + s.name + "' in the " +
-                       "gradebook: " + it->second + " and " + folder + " (rename one folder)");
+      throw UsageError("two submissions would share the name '" + printable(s.name) +
+                       "' in the gradebook: " + printable(it->second) + " and " +
+                       printable(folder) + " (rename one folder)");
     found.push_back(std::move(s));
   }
   return found;
 }
 
-int grade(const Options& options) {
+// An absolute path without a trailing separator: the compiler runs in other folders, and
+// "results/" and "results" are the same folder.
+fs::path absolute_folder(const fs::path& path) {
+  fs::path a = fs::absolute(path).lexically_normal();
+  if (a.filename().empty() && a.has_parent_path()) a = a.parent_path();
+  return a;
+}
+
+int grade(Options options) {
+  options.out = absolute_folder(options.out);
+  options.work =
+      options.work.empty() ? options.out.parent_path() / "work" : absolute_folder(options.work);
   const Kit kit = read_kit(options.kit);
   std::string listing;
   for (const auto& [task, program] : kit.programs)
@@ -130,16 +142,20 @@ int grade(const Options& options) {
   std::vector<TestInfo> tests = parse_test_list(listing);
   assign_points(tests, options.points.empty() ? kit.points : options.points);
   const std::vector<Submission> submissions = find_all(options, kit);
+  for (const Submission& s : submissions)
+    if (s.empty())
+      std::cerr << "springlab-grade: " << printable(s.name) << ": not one of the tasks' files "
+                << "found (graded as the starter code): is " << printable(s.folder.string())
+                << " a submission?\n";
   Settings settings = options.settings;
   settings.tasks = options.tasks;
-  settings.work = options.work.empty() ? options.out.parent_path() / "work" : options.work;
+  settings.work = options.work;
   check_apart(options.out, submissions);
   check_apart(settings.work, submissions);
   prepare(options.out);
   prepare(settings.work);
 
   Grader grader(kit, tests, settings);
-  const auto start = std::chrono::steady_clock::now();
   std::cerr << "springlab-grade: the reference's time per test (measured once per build)\n";
   grader.calibrate(options.kit.parent_path() / "calibration.txt");
   if (options.student)
@@ -165,9 +181,12 @@ int grade(const Options& options) {
     }
   };
   const auto submission_done = [&](const SubmissionResult& r) {
-    const double seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    const fs::path folder = options.out / r.submission.name;
+    // Its own tests' time, not the batch's: in a batch the submissions share the machine.
+    double seconds = 0.0;
+    for (const auto& [task, result] : r.tasks)
+      for (const TestResult& t : result.tests)
+        seconds += t.seconds + t.sanitized_seconds;
+    const fs::path folder = options.out / results_folder(r.submission.name);
     fs::create_directories(folder);
     write_file(folder / "feedback.txt", feedback(r, kit));
     write_file(folder / "results.json", results_json(r, seconds));

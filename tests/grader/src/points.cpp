@@ -46,7 +46,7 @@ void assign_points(std::vector<TestInfo>& tests, const std::filesystem::path& fi
   }
   const auto points_of = [&](const toml::node& node, const std::string& key) {
     const std::optional<double> value = node.value<double>();
-    if (!value || !std::isfinite(*value) || *value < 0) {
+    if (!value || !std::isfinite(*value) || *value < 0 || *value > 1e6) {
       std::ostringstream written;
       if (const auto text = node.value<std::string>())
         written << '"' << *text << '"';
@@ -55,7 +55,7 @@ void assign_points(std::vector<TestInfo>& tests, const std::filesystem::path& fi
       else
         written << "a " << node.type();
       throw UsageError(file.string() + ": " + key + " = " + written.str() +
-                       ": allowed a number of points >= 0");
+                       ": allowed a number of points from 0 to 1000000");
     }
     return *value;
   };

@@ -124,6 +124,16 @@ long resident_kb(pid_t pid) {
   return resident * (::sysconf(_SC_PAGESIZE) / 1024);
 }
 
+// The child's resident memory and its own children's (a test's harness and its worker).
+long resident_kb_with_children(pid_t pid) {
+  long total = resident_kb(pid);
+  std::ifstream children("/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) +
+                         "/children");
+  for (pid_t child = 0; children >> child;)
+    total += resident_kb(child);
+  return total;
+}
+
 }  // namespace
 
 struct ProcessPool::Impl {
@@ -269,7 +279,7 @@ void ProcessPool::Impl::step() {
     const long resident_limit = r.job.command.limits.resident_mb;
     if (resident_limit > 0 && now >= r.next_memory_check) {
       r.next_memory_check = now + std::chrono::milliseconds(50);
-      if (resident_kb(r.pid) > resident_limit * 1024) stop(r, Stop::memory);
+      if (resident_kb_with_children(r.pid) > resident_limit * 1024) stop(r, Stop::memory);
     }
   }
   for (auto it = running.begin(); it != running.end();) {

@@ -85,6 +85,11 @@ std::string csv(std::string field) {
 
 }  // namespace
 
+std::string results_folder(const std::string& name) {
+  const bool clash = name == "gradebook.csv" || name == "review.csv" || name.front() == '.';
+  return clash ? "submission-" + name : name;
+}
+
 std::string points_text(double points) {
   std::ostringstream out;
   out << std::round(points * 100.0) / 100.0;
@@ -154,6 +159,8 @@ std::string summary_feedback(const SubmissionResult& result) {
   std::ostringstream out;
   out << "==> Summary: " << points_text(result.points()) << " of "
       << points_text(result.max_points()) << " points\n";
+  for (const std::string& note : result.submission.notes)
+    out << "  note: " << printable(note) << '\n';
   for (const auto& [task, r] : result.tasks) {
     out << "  task " << task << ": ";
     if (r.problem.rfind("does not compile", 0) == 0)

@@ -35,6 +35,10 @@ std::string gradebook(const std::vector<SubmissionResult>& results);
 /// "" when none does.
 std::string review_list(const std::vector<SubmissionResult>& results);
 
+/// A submission's folder in --out: its name, unless that is one of the grader's own files there
+/// (or hidden), which would clash: then "submission-" and the name.
+std::string results_folder(const std::string& name);
+
 /// Points as people write them: "12", "2.5".
 std::string points_text(double points);
 

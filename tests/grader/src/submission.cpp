@@ -1,5 +1,7 @@
 #include "submission.hpp"
 
+#include "reports.hpp"
+
 #include <algorithm>
 #include <fstream>
 #include <iterator>
@@ -21,12 +23,6 @@ std::string read_bytes(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-bool is_task_folder(const fs::path& path, const Kit& kit) {
-  for (int task = 1; task <= 5; ++task)
-    if (path.filename() == kit.task_folder(task)) return true;
-  return false;
-}
-
 }  // namespace
 
 std::string to_string(Layout layout) {
@@ -41,29 +37,66 @@ std::string to_string(Layout layout) {
   return "?";
 }
 
+bool Submission::empty() const {
+  for (const auto& [task, source] : tasks)
+    if (!source.found.empty()) return false;
+  return true;
+}
+
+namespace {
+
+// A folder of the submission's own, not a link to one.
+bool real_folder(const fs::path& path) {
+  return fs::is_directory(fs::symlink_status(path));
+}
+
+bool holds_tasks(const fs::path& folder, const Kit& kit) {
+  if (real_folder(folder / "tasks")) return true;
+  for (const auto& [task, files] : kit.task_files) {
+    if (real_folder(folder / kit.task_folder(task))) return true;
+    for (const std::string& file : files)
+      if (fs::is_regular_file(fs::symlink_status(folder / file_name(file)))) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 Submission find_submission(const fs::path& folder, const Kit& kit) {
   std::error_code error;
-  const fs::path root = fs::canonical(folder, error);
+  fs::path root = fs::canonical(folder, error);
   if (error || !fs::is_directory(root))
-    throw UsageError("submission '" + folder.string() + "': not a folder");
+    throw UsageError("submission '" + printable(folder.string()) + "': not a folder");
   Submission s;
   s.folder = root;
   s.name = root.filename().string();
   if (s.name.empty()) s.name = "root";
+  if (!holds_tasks(root, kit)) {
+    std::vector<fs::path> inside;
+    for (const fs::directory_entry& entry : fs::directory_iterator(root, error))
+      if (entry.path().filename().string().front() != '.') inside.push_back(entry.path());
+    if (inside.size() == 1 && real_folder(inside.front()) && holds_tasks(inside.front(), kit)) {
+      root = inside.front();
+      s.notes.push_back("graded the files in " + root.filename().string() + "/, the only folder");
+    }
+  }
+  const std::string linked = "/ is a link to a folder: left out (submit the files themselves)";
+  if (fs::is_symlink(root / "tasks")) s.notes.push_back("tasks" + linked);
   fs::path tasks_root = root;
   s.layout = Layout::loose_files;
-  if (fs::is_directory(root / "tasks")) {
+  if (real_folder(root / "tasks")) {
     s.layout = Layout::repository;
     tasks_root = root / "tasks";
   } else {
-    for (const fs::directory_entry& entry : fs::directory_iterator(root, error))
-      if (entry.is_directory() && is_task_folder(entry.path(), kit))
-        s.layout = Layout::tasks_folder;
+    for (const auto& [task, files] : kit.task_files)
+      if (real_folder(root / kit.task_folder(task))) s.layout = Layout::tasks_folder;
   }
   for (const auto& [task, files] : kit.task_files) {
     TaskSource& source = s.tasks[task];
     source.folder = s.layout == Layout::loose_files ? root : tasks_root / kit.task_folder(task);
-    if (!fs::is_directory(source.folder)) source.folder.clear();
+    if (fs::is_symlink(source.folder))
+      source.notes.push_back(source.folder.lexically_relative(root).string() + linked);
+    if (!real_folder(source.folder)) source.folder.clear();
     for (const std::string& kit_file : files) {
       const std::string name = file_name(kit_file);
       const fs::path path = source.folder / name;
@@ -80,6 +113,7 @@ TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
                    const fs::path& destination) {
   const TaskSource& source = submission.tasks.at(task);
   TaskCopy copy;
+  copy.notes = source.notes;
   copy.folder = destination / "tasks" / kit.task_folder(task);
   fs::create_directories(copy.folder);
   std::set<std::string> other_tasks_files;
@@ -110,6 +144,11 @@ TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
         continue;
       }
       others.push_back(entry.path());
+      const std::string extension = entry.path().extension().string();
+      if (extension == ".cpp" || extension == ".cc" || extension == ".cxx")
+        copy.notes.push_back(name +
+                             " is not compiled: only the kit's files of the task are (put "
+                             "helpers in them, or in a header they include)");
     }
   std::sort(others.begin(), others.end());
   if (others.size() > std::size_t(most_files)) {

@@ -26,6 +26,7 @@ struct TaskSource {
   fs::path folder;                   ///< searched for the task's files ("" if the task has none)
   std::vector<std::string> found;    ///< the kit's file names found there, e.g. "spring_damper.cpp"
   std::vector<std::string> missing;  ///< the kit's file names not found: the starter code is used
+  std::vector<std::string> notes;    ///< why its folder was left out, if it was
 };
 
 struct Submission {
@@ -33,9 +34,15 @@ struct Submission {
   fs::path folder;   ///< absolute
   Layout layout = Layout::tasks_folder;
   std::map<int, TaskSource> tasks;  ///< 1-5
+  std::vector<std::string> notes;   ///< what was left out or looked for elsewhere, and why
+  /// True when not one of the kit's files was found (a wrong folder, or an empty submission).
+  bool empty() const;
 };
 
-/// Finds the task files of the submission in `folder`. Throws UsageError when it is not a folder.
+/// Finds the task files of the submission in `folder`, or in its one subfolder when it holds
+/// nothing else (a download that wraps the repository in a folder of its own). Linked folders
+/// are never followed (git and zip keep links; one could reach the kit's solutions or a
+/// classmate's copy). Throws UsageError when `folder` is not a folder.
 Submission find_submission(const fs::path& folder, const Kit& kit);
 
 /// What the copy of one task holds, beside the files themselves: what a student should know.

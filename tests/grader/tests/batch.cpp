@@ -4,6 +4,7 @@
 // (tests/grader/hostile/*/, see expect.toml there) gets the score and the feedback it must; the
 // submissions and the kit's sources on disk are unchanged afterwards, and no report grows large.
 #include "process.hpp"
+#include "reports.hpp"
 
 #include <toml++/toml.h>
 #include <catch2/catch.hpp>
@@ -136,6 +137,14 @@ Expectation hostile(const fs::path& folder) {
   for (const std::string& helper : helpers)
     for (const std::string& task_folder : touched)
       write_case_file(folder / helper, target / task_folder / helper);
+  // [links]: a path in the submission that is a symbolic link (to @KIT@/... or elsewhere).
+  if (const toml::table* links = expect["links"].as_table())
+    for (const auto& [path, to] : *links) {
+      std::string where = to.value_or(std::string());
+      if (where.rfind("@KIT@", 0) == 0) where = kit.string() + where.substr(5);
+      fs::remove_all(target / std::string(path.str()));
+      fs::create_symlink(where, target / std::string(path.str()));
+    }
   for (int task = 1; task <= 5; ++task) {
     const std::string key = "task" + std::to_string(task);
     if (const auto points = expect[key]["points"].value<std::string>())
@@ -243,7 +252,7 @@ TEST_CASE(
   for (const Expectation& e : expected) {
     INFO(e.name << ": " << e.what);
     REQUIRE(rows.count(e.name) == 1);
-    const std::string feedback = read(batch / "results" / e.name / "feedback.txt");
+    const std::string feedback = read(batch / "results" / results_folder(e.name) / "feedback.txt");
     for (const auto& [task, want] : e.points) {
       const double got = rows.at(e.name)[std::size_t(task - 1)];
       const double full = most[std::size_t(task)];

@@ -69,9 +69,11 @@ TEST_CASE("Points: mistakes in the file are named with the value and what is all
              Catch::Contains("\"Spring: tree\": no test of task 1 has this name") &&
                  Catch::Contains("Spring: one"));
   CHECK_THAT(rejection(tests, "[task1]\ndefault = -1\n"),
-             Catch::Contains("task1.default = -1: allowed a number of points >= 0"));
+             Catch::Contains("task1.default = -1: allowed a number of points from 0 to 1000000"));
   CHECK_THAT(rejection(tests, "[task1]\ndefault = \"two\"\n"),
-             Catch::Contains("default = \"two\": allowed a number of points >= 0"));
+             Catch::Contains("default = \"two\": allowed a number of points from 0 to 1000000"));
+  CHECK_THAT(rejection(tests, "[task1]\ndefault = 1e308\n"),
+             Catch::Contains("task1.default = 1e+308: allowed a number of points from 0 to"));
   CHECK_THAT(rejection(tests, "[task9]\ndefault = 1\n"),
              Catch::Contains("[task9]: allowed sections are [task1] ... [task5]"));
   CHECK_THAT(rejection(tests, "[task1\n"), Catch::Contains("springlab-points-test.toml:1"));

@@ -86,3 +86,32 @@ TEST_CASE("Copies hold the same contents exactly when their files are the same",
   CHECK(contents("a") == contents("b"));
   CHECK(contents("a") != contents("c"));
 }
+
+TEST_CASE("Linked folders are never followed, and a download's one wrapping folder is looked into",
+          "[submission]") {
+  Folders f;
+  // A repository whose tasks/ is a link (to the kit's starter code here, or its solutions), and
+  // a copy of tasks/ whose task 2 folder is.
+  fs::create_directories(f.top / "linked");
+  fs::create_directory_symlink(f.kit.starter, f.top / "linked" / "tasks");
+  const Submission linked = find_submission(f.top / "linked", f.kit);
+  CHECK(linked.empty());
+  REQUIRE(linked.notes.size() == 1);
+  CHECK_THAT(linked.notes[0], Catch::Contains("tasks/ is a link to a folder: left out"));
+  f.write(f.top / "partly" / "task1_two_masses" / "spring_damper.cpp", "own");
+  fs::create_directory_symlink(f.kit.starter / "task2_four_masses",
+                               f.top / "partly" / "task2_four_masses");
+  const Submission partly = find_submission(f.top / "partly", f.kit);
+  CHECK(partly.tasks.at(1).found == std::vector<std::string>{"spring_damper.cpp"});
+  CHECK(partly.tasks.at(2).found.empty());
+  CHECK_THAT(partly.tasks.at(2).notes.at(0),
+             Catch::Contains("task2_four_masses/ is a link to a folder: left out"));
+  // GitHub's "Download ZIP": the repository inside a folder of its own.
+  f.write(f.top / "zip" / "springlab-main" / "tasks" / "task2_four_masses" / "spring_forces.cpp",
+          "zipped");
+  const Submission zipped = find_submission(f.top / "zip", f.kit);
+  CHECK(zipped.name == "zip");
+  CHECK(zipped.layout == Layout::repository);
+  CHECK(zipped.tasks.at(2).found == std::vector<std::string>{"spring_forces.cpp"});
+  CHECK_THAT(zipped.notes.at(0), Catch::Contains("graded the files in springlab-main/"));
+}
