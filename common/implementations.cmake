@@ -4,11 +4,9 @@
 #   reference       all of solutions/
 #   student_taskN   the student's task N files (tasks/taskN_*) and solutions/ for the other tasks
 # so that one program (the runner, the viewer) can hold every build at once and switch between
-# them. The grader builds submissions its own way (tests/grader/).
+# them. The grader builds submissions its own way (tests/grader/). Where solutions/ is not here
+# (a student release), its objects come prebuilt (common/reference.cmake).
 
-file(GLOB SPRINGLAB_SOLUTION_FILES CONFIGURE_DEPENDS
-     RELATIVE "${PROJECT_SOURCE_DIR}/solutions" "${PROJECT_SOURCE_DIR}/solutions/task*/*.cpp")
-list(SORT SPRINGLAB_SOLUTION_FILES)
 set(SPRINGLAB_TASKS 1 2 3 4 5)
 
 # The task number of a path such as task2_four_masses/spring_forces.cpp.
@@ -17,29 +15,54 @@ function(springlab_task_of path out)
   set(${out} "${CMAKE_MATCH_1}" PARENT_SCOPE)
 endfunction()
 
-# An object library for one file in one namespace, made once and shared by every build using it.
-function(springlab_object out ns tree file)
-  get_filename_component(name "${file}" NAME_WE)
-  string(MD5 hash "${file}")
-  string(SUBSTRING "${hash}" 0 8 hash)
-  string(MAKE_C_IDENTIFIER "obj_${ns}_${name}_${hash}" target)
-  if(NOT TARGET ${target})
-    add_library(${target} OBJECT "${file}")
-    target_compile_definitions(${target} PRIVATE SPRINGLAB_IMPL=${ns})
-    target_link_libraries(${target} PRIVATE springlab_core)
-    if(tree STREQUAL "solutions")
-      target_link_libraries(${target} PRIVATE springlab_warnings)
-      set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION ${SPRINGLAB_IPO})
-    else()  # a student's file: warn, never fail the build; full debug information, to step
-      # through it in a debugger (the kit's own code has line tables only, -g1: a third faster
-      # to compile, and enough for backtraces and the sanitizers' reports)
-      target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS} -g)
-    endif()
-    if(NOT ns STREQUAL "reference" AND NOT SPRINGLAB_SANITIZE_ALL)
-      target_compile_options(${target} PRIVATE -fno-sanitize=undefined)  # see tests/CMakeLists.txt
+# An object library for one file, `rel` (as task1_two_masses/spring_damper.cpp) of `tree`
+# (solutions or tasks), in one namespace, made once and shared by every build using it.
+function(springlab_object out ns tree rel)
+  if(tree STREQUAL "solutions" AND SPRINGLAB_REFERENCE_FROM STREQUAL "student")
+    set(tree tasks)  # no usable reference: the student's own file stands in
+  endif()
+  if(tree STREQUAL "solutions")
+    set(file "${PROJECT_SOURCE_DIR}/solutions/${rel}")
+  else()
+    set(file "${SPRINGLAB_TASKS_DIR}/${rel}")
+    if(NOT EXISTS "${file}")
+      message(FATAL_ERROR "${file} is missing: tasks/ must hold every file of the reference "
+              "(${SPRINGLAB_SOLUTION_FILES})")
     endif()
   endif()
+  get_filename_component(name "${file}" NAME_WE)
+  string(MD5 hash "${tree}/${rel}")
+  string(SUBSTRING "${hash}" 0 8 hash)
+  string(MAKE_C_IDENTIFIER "obj_${ns}_${name}_${hash}" target)
   set(${out} ${target} PARENT_SCOPE)
+  if(TARGET ${target})
+    return()
+  endif()
+  springlab_archive_member(member ${ns} "${rel}")
+  if(tree STREQUAL "solutions" AND SPRINGLAB_REFERENCE_FROM STREQUAL "prebuilt")
+    add_library(${target} OBJECT IMPORTED)
+    set_property(TARGET ${target} PROPERTY IMPORTED_OBJECTS
+                 "${SPRINGLAB_PREBUILT_OBJECTS}/${member}")
+    return()
+  endif()
+  add_library(${target} OBJECT "${file}")
+  target_compile_definitions(${target} PRIVATE SPRINGLAB_IMPL=${ns})
+  target_link_libraries(${target} PRIVATE springlab_core)
+  # Position-independent: the grader links the reference into programs of its own, and a
+  # release's prebuilt objects must fit every program that uses them.
+  set_property(TARGET ${target} PROPERTY POSITION_INDEPENDENT_CODE ON)
+  if(tree STREQUAL "solutions")
+    target_link_libraries(${target} PRIVATE springlab_warnings)
+    set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION ${SPRINGLAB_IPO})
+    set_property(GLOBAL APPEND PROPERTY SPRINGLAB_REFERENCE_OBJECTS "${target}|${member}")
+  else()  # a student's file: warn, never fail the build; full debug information, to step
+    # through it in a debugger (the kit's own code has line tables only, -g1: a third faster
+    # to compile, and enough for backtraces and the sanitizers' reports)
+    target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS} -g)
+  endif()
+  if(NOT ns STREQUAL "reference" AND NOT SPRINGLAB_SANITIZE_ALL)
+    target_compile_options(${target} PRIVATE -fno-sanitize=undefined)  # see tests/CMakeLists.txt
+  endif()
 endfunction()
 
 # springlab_add_implementation(TARGET NS STUDENT_TASK): the solutions in namespace NS, with task
@@ -49,15 +72,10 @@ function(springlab_add_implementation target ns student_task)
   foreach(rel IN LISTS SPRINGLAB_SOLUTION_FILES)
     springlab_task_of("${rel}" task)
     set(tree solutions)
-    set(file "${PROJECT_SOURCE_DIR}/solutions/${rel}")
     if(task STREQUAL "${student_task}")
       set(tree tasks)
-      set(file "${SPRINGLAB_TASKS_DIR}/${rel}")
-      if(NOT EXISTS "${file}")
-        message(FATAL_ERROR "${file} is missing: tasks/ must hold every file solutions/ holds")
-      endif()
     endif()
-    springlab_object(object ${ns} ${tree} "${file}")
+    springlab_object(object ${ns} ${tree} "${rel}")
     list(APPEND objects $<TARGET_OBJECTS:${object}>)
   endforeach()
   add_library(${target} STATIC "${PROJECT_SOURCE_DIR}/common/impl/implementation_table.cpp"
@@ -79,3 +97,6 @@ add_library(springlab_implementations STATIC "${PROJECT_SOURCE_DIR}/common/impl/
 target_link_libraries(springlab_implementations PUBLIC springlab_core springlab_reference
                       springlab_student_task1 springlab_student_task2 springlab_student_task3
                       springlab_student_task4 springlab_student_task5 PRIVATE springlab_warnings)
+if(SPRINGLAB_REFERENCE_FROM STREQUAL "student")
+  target_compile_definitions(springlab_implementations PRIVATE SPRINGLAB_NO_REFERENCE)
+endif()

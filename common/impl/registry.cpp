@@ -28,6 +28,14 @@ const Implementation& reference_implementation() {
   return reference::implementation();
 }
 
+bool reference_is_available() {
+#ifdef SPRINGLAB_NO_REFERENCE
+  return false;
+#else
+  return true;
+#endif
+}
+
 const Implementation& student_implementation(int task) {
   switch (task) {
     case 1:

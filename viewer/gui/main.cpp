@@ -6,6 +6,7 @@
 #include "gui/display.hpp"
 #include "gui/runs.hpp"
 #include "springlab/errors.hpp"
+#include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 
@@ -84,6 +85,11 @@ int open_viewer(Options& options) {
   if (options.steps_per_frame)
     pacing.real_time = false, pacing.steps_per_frame = *options.steps_per_frame;
   session.set_code(options.impl == "student" ? Code::student : Code::reference);
+  if (options.compare != "off" && !reference_is_available())
+    std::cerr << "springlab-view: --compare " << options.compare
+              << " is off: this build has no reference to compare with (its prebuilt reference "
+                 "was made for another compiler or processor; the build's first message says "
+                 "which)\n";
   session.set_compare(options.compare == "overlay"        ? Compare::overlay
                       : options.compare == "side-by-side" ? Compare::side_by_side
                                                           : Compare::off);

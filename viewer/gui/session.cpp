@@ -115,7 +115,7 @@ void Session::set_code(Code code) {
 }
 
 void Session::set_compare(Compare compare) {
-  compare_ = compare;
+  compare_ = reference_is_available() ? compare : Compare::off;
   rebuild(true);
 }
 

@@ -39,6 +39,11 @@ struct Implementation {
 /// The reference implementation (solutions/).
 const Implementation& reference_implementation();
 
+/// False only in a student release built where its prebuilt reference cannot be used
+/// (common/reference.cmake): reference_implementation() then runs the student's own code, so
+/// front ends turn comparisons with it off.
+bool reference_is_available();
+
 /// The student's task `task` (1–5) with the reference for every other task: what `./lab test
 /// taskN --student` grades. Throws InvalidParameter for a task outside 1–5.
 const Implementation& student_implementation(int task);

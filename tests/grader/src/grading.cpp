@@ -519,11 +519,14 @@ std::vector<SubmissionResult> Grader::grade(
 
 void Grader::calibrate(const fs::path& cache) {
   const std::string signature = kit_signature(kit_, tests_);
+  // A student release has no solutions/ to time: it carries the times the instructor's build
+  // measured (another machine's, but the limits are ten times as long and at least 2 s).
+  const bool shipped = kit_.solutions.empty();
   {
-    std::ifstream in(cache);
+    std::ifstream in(shipped ? kit_.calibration : cache);
     std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
     const auto split = text.find("---\n");
-    if (split != std::string::npos && text.substr(0, split) == signature) {
+    if (split != std::string::npos && (shipped || text.substr(0, split) == signature)) {
       std::istringstream lines(text.substr(split + 4));
       std::string variant, line;
       double seconds = 0;
@@ -531,6 +534,7 @@ void Grader::calibrate(const fs::path& cache) {
         calibration_[variant][line.substr(1)] = seconds;
       return;
     }
+    if (shipped) return;  // no times: every test gets the floor's ten times (src/grading.hpp)
   }
   const Settings saved = settings_;
   settings_.tasks = {1, 2, 3, 4, 5};

@@ -58,6 +58,7 @@ Kit read_kit(const fs::path& file) {
   result.root = read.text(kit["root"], "root");
   result.starter = read.text(kit["starter"], "starter");
   result.solutions = read.text(kit["solutions"], "solutions");
+  result.calibration = read.text(kit["calibration"], "calibration");
   result.pch = read.text(kit["pch"], "pch");
   result.headers = read.text(kit["headers"], "headers");
   result.points = read.text(kit["points"], "points");
