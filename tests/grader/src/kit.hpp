@@ -21,15 +21,15 @@ struct Variant {
 };
 
 struct Kit {
-  fs::path root;       ///< the kit's source folder
-  fs::path starter;    ///< the starter code, tasks/ (stands in for missing files)
-  fs::path solutions;  ///< the reference code, solutions/ (its times set the time limits); empty
-                       ///< in a student release, which has none
+  fs::path root;         ///< the kit's source folder
+  fs::path starter;      ///< the starter code, tasks/ (stands in for missing files)
+  fs::path solutions;    ///< the reference code, solutions/ (its times set the time limits); empty
+                         ///< in a student release, which has none
   fs::path calibration;  ///< without solutions/: the reference's times, measured by the instructor
-  fs::path pch;        ///< the folder of the precompiled headers submission code is built with
-  fs::path headers;    ///< common/include: the only kit folder submission code may include from
-  fs::path points;     ///< tests/points.toml
-  fs::path nm;         ///< lists an object's symbols
+  fs::path pch;          ///< the folder of the precompiled headers submission code is built with
+  fs::path headers;      ///< common/include: the only kit folder submission code may include from
+  fs::path points;       ///< tests/points.toml
+  fs::path nm;           ///< lists an object's symbols
   std::vector<fs::path> system_headers;  ///< the compiler's own include folders
   Variant plain, sanitized;
   /// Per task 1-5: its files, as "task1_two_masses/spring_damper.cpp".

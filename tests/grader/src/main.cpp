@@ -144,8 +144,10 @@ int grade(Options options) {
   assign_points(tests, options.points.empty() ? kit.points : options.points);
   if (options.max_points) {  // for the GitHub Classroom workflow of a release (./lab release)
     std::map<int, double> max;
-    for (const TestInfo& t : tests) max[t.task] += t.points;
-    for (const auto& [task, points] : max) std::cout << "task" << task << ' ' << points << '\n';
+    for (const TestInfo& t : tests)
+      max[t.task] += t.points;
+    for (const auto& [task, points] : max)
+      std::cout << "task" << task << ' ' << points << '\n';
     return 0;
   }
   if (options.submissions.empty()) throw UsageError("submission is required");
