@@ -206,9 +206,17 @@ std::string results_json(const SubmissionResult& result, double seconds) {
                        {"tags", tags},
                        {"visibility", "visible"}});
     }
+  // Gradescope shows the top-level output above the tests: what was missing or left out must
+  // be said there too, not only in each of the task's tests.
+  std::string output = summary_feedback(result);
+  std::string notes;
+  for (const auto& [task, r] : result.tasks)
+    for (const std::string& note : r.notes)
+      notes += "  task " + std::to_string(task) + ": " + printable(note) + '\n';
+  if (!notes.empty()) output += "Notes on the files submitted:\n" + notes;
   const json results = {{"score", std::round(result.points() * 100.0) / 100.0},
                         {"execution_time", long(std::lround(seconds))},
-                        {"output", summary_feedback(result)},
+                        {"output", output},
                         {"visibility", "visible"},
                         {"stdout_visibility", "hidden"},
                         {"tests", tests}};

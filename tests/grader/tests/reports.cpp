@@ -81,6 +81,19 @@ TEST_CASE("results.json: Gradescope's fields for every test, and what the code p
   CHECK_THAT(json["tests"][2]["output"].get<std::string>(), Catch::Contains("expected ';'"));
 }
 
+TEST_CASE("results.json: the top-level output is the summary, and says what files were missing",
+          "[reports]") {
+  Example e("alice", "");
+  auto json = nlohmann::json::parse(results_json(e.result, 1.0));
+  CHECK(json["output"] == summary_feedback(e.result));
+  e.result.tasks[2].notes = {"structural_springs.cpp is missing: graded as the starter code"};
+  json = nlohmann::json::parse(results_json(e.result, 1.0));
+  CHECK_THAT(json["output"].get<std::string>(),
+             Catch::StartsWith(summary_feedback(e.result)) &&
+                 Catch::EndsWith("Notes on the files submitted:\n  task 2: structural_springs.cpp "
+                                 "is missing: graded as the starter code\n"));
+}
+
 TEST_CASE("JUnit: one testcase per test, failures escaped", "[reports]") {
   const Example e("alice", "<system-out>");
   const std::string xml = junit_report(e.result, 1);

@@ -1,0 +1,209 @@
+// springlab-gradescope-check: checks a results.json written by run_autograder against Gradescope's
+// format and against what the submission should score (.ci/autograder runs it). Every field
+// Gradescope reads must be there with its type; every test is tagged with its task, has a status
+// that agrees with its score and a visibility Gradescope knows, and the tests add up to the total.
+// Prints one line per task and exits 0, or names each field that is wrong and exits 1.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+using nlohmann::json;
+
+struct Tally {
+  double score = 0.0, max_score = 0.0;
+  int passed = 0, failed = 0;
+};
+
+class Checker {
+ public:
+  void fail(const std::string& what) { problems_.push_back(what); }
+  bool ok() const { return problems_.empty(); }
+  void report() const {
+    for (const std::string& p : problems_)
+      std::cerr << "springlab-gradescope-check: " << p << '\n';
+  }
+
+  // The field `key` of `object` (named `where`) when it has the type `is` checks, else null.
+  const json* field(const json& object, const std::string& where, const std::string& key,
+                    bool (json::*is)() const noexcept, const std::string& type) {
+    const auto it = object.find(key);
+    if (it == object.end()) {
+      fail(where + "." + key + " is missing (" + type + " expected)");
+      return nullptr;
+    }
+    if (!((*it).*is)()) {
+      fail(where + "." + key + " = " + it->dump() + ": " + type + " expected");
+      return nullptr;
+    }
+    return &*it;
+  }
+
+ private:
+  std::vector<std::string> problems_;
+};
+
+// "taskN" for the test named "Task N: ..." (the grader's names), or "" when it names none.
+std::string task_of(const std::string& name) {
+  if (name.size() > 7 && name.rfind("Task ", 0) == 0 && name[5] >= '1' && name[5] <= '5' &&
+      name[6] == ':')
+    return std::string("task") + name[5];
+  return "";
+}
+
+// Equal to the hundredth of a point the grader rounds totals to.
+bool close(double a, double b) {
+  return std::abs(a - b) < 0.006;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string file, expect = "any";
+  int except_task = 0;
+  std::vector<std::string> mentions;
+  CLI::App app("springlab-gradescope-check: checks a results.json from run_autograder");
+  app.add_option("results", file, "the results.json to check")->required();
+  app.add_option("--expect", expect,
+                 "full: every test passes; zero: every test fails; broken: grading failed "
+                 "(score 0, no tests, says so); any")
+      ->check(CLI::IsMember({"full", "zero", "broken", "any"}))
+      ->capture_default_str();
+  app.add_option("--except-task", except_task,
+                 "with --expect full: this task's tests may fail, and one at least must")
+      ->check(CLI::Range(1, 5));
+  app.add_option("--output-mentions", mentions, "text the top-level output must contain");
+  CLI11_PARSE(app, argc, argv);
+
+  json results;
+  try {
+    std::ifstream in(file);
+    if (!in) {
+      std::cerr << "springlab-gradescope-check: cannot read " << file << '\n';
+      return 1;
+    }
+    results = json::parse(in);
+  } catch (const json::exception& error) {
+    std::cerr << "springlab-gradescope-check: " << file << " is not JSON: " << error.what() << '\n';
+    return 1;
+  }
+
+  Checker c;
+  if (!results.is_object()) {
+    std::cerr << "springlab-gradescope-check: " << file << ": an object expected\n";
+    return 1;
+  }
+  const std::set<std::string> visibilities = {"hidden", "after_due_date", "after_published",
+                                              "visible"};
+  const json* score = c.field(results, "results", "score", &json::is_number, "a number");
+  c.field(results, "results", "execution_time", &json::is_number, "a number of seconds");
+  const json* output = c.field(results, "results", "output", &json::is_string, "a string");
+  if (const json* v =
+          c.field(results, "results", "stdout_visibility", &json::is_string, "a string"))
+    if (visibilities.count(v->get<std::string>()) == 0)
+      c.fail("results.stdout_visibility = " + v->dump() + ": one of hidden, after_due_date, " +
+             "after_published, visible expected");
+  const json* tests = c.field(results, "results", "tests", &json::is_array, "an array");
+
+  std::map<std::string, Tally> tasks;
+  Tally all;
+  if (tests != nullptr)
+    for (std::size_t i = 0; i < tests->size(); ++i) {
+      const json& t = (*tests)[i];
+      const std::string where = "tests[" + std::to_string(i) + "]";
+      if (!t.is_object()) {
+        c.fail(where + ": an object expected");
+        continue;
+      }
+      const json* name = c.field(t, where, "name", &json::is_string, "a string");
+      const json* s = c.field(t, where, "score", &json::is_number, "a number");
+      const json* max = c.field(t, where, "max_score", &json::is_number, "a number");
+      const json* status = c.field(t, where, "status", &json::is_string, "a string");
+      c.field(t, where, "output", &json::is_string, "a string");
+      const json* tags = c.field(t, where, "tags", &json::is_array, "an array of strings");
+      const json* visibility = c.field(t, where, "visibility", &json::is_string, "a string");
+      if (name == nullptr || s == nullptr || max == nullptr || status == nullptr ||
+          tags == nullptr || visibility == nullptr)
+        continue;
+      const std::string n = name->get<std::string>(), st = status->get<std::string>();
+      const std::string task = task_of(n);
+      const double points = s->get<double>(), most = max->get<double>();
+      if (task.empty()) c.fail(where + ".name = " + name->dump() + ": \"Task N: ...\" expected");
+      bool tagged = false;
+      for (const json& tag : *tags)
+        if (!tag.is_string())
+          c.fail(where + ".tags holds " + tag.dump() + ": strings expected");
+        else
+          tagged = tagged || tag.get<std::string>() == task;
+      if (!task.empty() && !tagged)
+        c.fail(where + ".tags = " + tags->dump() + ": " + task + " expected, for " + name->dump());
+      if (st != "passed" && st != "failed")
+        c.fail(where + ".status = " + status->dump() + ": \"passed\" or \"failed\" expected");
+      const std::string vis = visibility->get<std::string>();
+      if (vis != "visible" && vis != "after_due_date")
+        c.fail(where + ".visibility = " + visibility->dump() +
+               ": \"visible\" or \"after_due_date\" expected");
+      if (points < 0 || most < 0 || points > most)
+        c.fail(where + ": score " + s->dump() + " of max_score " + max->dump() +
+               ": 0 <= score <= max_score expected");
+      if (st == "passed" && points != most)
+        c.fail(where + " passed with " + s->dump() + " of " + max->dump() + " points");
+      Tally& tally = tasks[task];
+      for (Tally* x : {&tally, &all}) {
+        x->score += points;
+        x->max_score += most;
+        (st == "passed" ? x->passed : x->failed) += 1;
+      }
+    }
+
+  if (score != nullptr && tests != nullptr && !close(score->get<double>(), all.score))
+    c.fail("results.score = " + score->dump() + ", but the tests' scores add up to " +
+           std::to_string(all.score));
+  const double total = score != nullptr ? score->get<double>() : 0.0;
+  const std::string text = output != nullptr ? output->get<std::string>() : "";
+  const std::size_t count = tests != nullptr ? tests->size() : 0;
+  if (expect == "full" || expect == "zero") {
+    if (count == 0) c.fail("no tests in results.tests");
+    for (const auto& [task, tally] : tasks) {
+      const bool excepted = task == "task" + std::to_string(except_task);
+      if (expect == "zero" && tally.passed > 0)
+        c.fail(task + ": " + std::to_string(tally.passed) + " tests passed, none expected");
+      if (expect == "full" && !excepted && tally.failed > 0)
+        c.fail(task + ": " + std::to_string(tally.failed) + " tests failed, none expected");
+      if (expect == "full" && excepted && tally.failed == 0)
+        c.fail(task + ": every test passed, but some should fail");
+    }
+    if (expect == "full" && except_task == 0 && !(total > 0 && close(total, all.max_score)))
+      c.fail("score " + std::to_string(total) + " of " + std::to_string(all.max_score) +
+             ": full marks expected");
+    if (expect == "zero" && total != 0.0) c.fail("score " + std::to_string(total) + ": 0 expected");
+  }
+  if (expect == "broken") {
+    if (total != 0.0) c.fail("score " + std::to_string(total) + ": 0 expected");
+    if (count != 0) c.fail(std::to_string(count) + " tests: none expected when grading failed");
+    if (text.find("could not grade") == std::string::npos)
+      c.fail("results.output does not say that grading failed: " + json(text).dump());
+  }
+  for (const std::string& m : mentions)
+    if (text.find(m) == std::string::npos)
+      c.fail("results.output does not mention " + json(m).dump() + ": " + json(text).dump());
+
+  if (!c.ok()) {
+    c.report();
+    return 1;
+  }
+  std::cout << file << ": " << count << " tests, " << total << " of " << all.max_score
+            << " points (" << all.passed << " passed, " << all.failed << " failed)\n";
+  for (const auto& [task, tally] : tasks)
+    std::cout << "  " << task << ": " << tally.score << " of " << tally.max_score << " points ("
+              << tally.passed << " passed, " << tally.failed << " failed)\n";
+  return 0;
+}
