@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iostream>
@@ -20,7 +21,7 @@ using nlohmann::json;
 
 struct Tally {
   double score = 0.0, max_score = 0.0;
-  int passed = 0, failed = 0;
+  int passed = 0, failed = 0, hidden = 0;
 };
 
 class Checker {
@@ -81,6 +82,10 @@ int main(int argc, char** argv) {
                  "with --expect full: this task's tests may fail, and one at least must")
       ->check(CLI::Range(1, 5));
   app.add_option("--output-mentions", mentions, "text the top-level output must contain");
+  bool hidden = false;
+  app.add_flag("--hidden", hidden,
+               "every task has hidden tests: visibility after_due_date and the tag hidden, "
+               "which no visible test has");
   CLI11_PARSE(app, argc, argv);
 
   json results;
@@ -148,6 +153,12 @@ int main(int argc, char** argv) {
       if (st != "passed" && st != "failed")
         c.fail(where + ".status = " + status->dump() + ": \"passed\" or \"failed\" expected");
       const std::string vis = visibility->get<std::string>();
+      const bool tagged_hidden = std::any_of(tags->begin(), tags->end(), [](const json& tag) {
+        return tag.is_string() && tag.get<std::string>() == "hidden";
+      });
+      if (hidden && tagged_hidden != (vis == "after_due_date"))
+        c.fail(where + " (" + n + "): visibility " + vis + " with tags " + tags->dump() +
+               ": the tag hidden exactly when the visibility is after_due_date");
       if (vis != "visible" && vis != "after_due_date")
         c.fail(where + ".visibility = " + visibility->dump() +
                ": \"visible\" or \"after_due_date\" expected");
@@ -161,6 +172,7 @@ int main(int argc, char** argv) {
         x->score += points;
         x->max_score += most;
         (st == "passed" ? x->passed : x->failed) += 1;
+        x->hidden += vis == "after_due_date" ? 1 : 0;
       }
     }
 
@@ -186,6 +198,10 @@ int main(int argc, char** argv) {
              ": full marks expected");
     if (expect == "zero" && total != 0.0) c.fail("score " + std::to_string(total) + ": 0 expected");
   }
+  if (hidden)
+    for (int n = 1; n <= 5; ++n)
+      if (tasks["task" + std::to_string(n)].hidden == 0)
+        c.fail("task" + std::to_string(n) + " has no hidden test (visibility after_due_date)");
   if (expect == "broken") {
     if (total != 0.0) c.fail("score " + std::to_string(total) + ": 0 expected");
     if (count != 0) c.fail(std::to_string(count) + " tests: none expected when grading failed");
