@@ -113,7 +113,10 @@ function(springlab_reference_archive)
   foreach(line IN LISTS SPRINGLAB_PLATFORM)
     string(APPEND manifest "\n${line}")
   endforeach()
-  string(APPEND manifest "\nflags = ${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_RELWITHDEBINFO}")
+  # For the reader only (not compared): the exact compiler, the build type and its flags.
+  string(STRIP "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_RELWITHDEBINFO}" flags)
+  string(APPEND manifest "\ncompiler_version = ${CMAKE_CXX_COMPILER_VERSION}"
+                         "\nbuild_type = ${CMAKE_BUILD_TYPE}\nflags = ${flags}")
   foreach(rel IN LISTS SPRINGLAB_SOLUTION_FILES)
     string(APPEND manifest "\nfile = ${rel}")
   endforeach()
