@@ -67,10 +67,12 @@ TEST_CASE("Verlet on a stiffer 4x7 grid: stable just below 2/w_max, unstable jus
   // step: a thousandfold in ln(1000) / ln(rho) steps, twice as many if it starts at a thousandth
   // of the strain.
   const double rho = step_growth_factor(model, "verlet", h);
-  CAPTURE(limit, factor, rho, start, history.size(), history.back());
+  // A first step that is no number at all ends the history before it starts.
+  const double last = history.empty() ? std::nan("") : history.back();
+  CAPTURE(limit, factor, rho, start, history.size(), last);
   if (factor < 1.0) {
     CHECK(history.size() == 4000);  // never grew a thousandfold
-    CHECK(history.back() < start);  // the dampers won
+    CHECK(last < start);            // the dampers won
   } else {
     CHECK(double(history.size()) < 2.0 * std::log(1e3) / std::log(rho));
   }
