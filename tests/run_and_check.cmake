@@ -1,7 +1,7 @@
 # Runs a command and checks its exit code, its output (stdout and stderr together) and,
 # optionally, its number of output lines and a file it writes: a front end's behaviour as a user
 # sees it.
-# cmake -DCOMMAND="exe|arg|..." -DEXIT=2 [-DMATCH=regex] [-DLINES=n]
+# cmake -DCOMMAND="exe|arg|..." -DEXIT=2 [-DMATCH=regex] [-DNOT_MATCH=regex] [-DLINES=n]
 #       [-DFILE=path -DFILE_MATCH=regex] -P run_and_check.cmake
 string(REPLACE "|" ";" COMMAND "${COMMAND}")
 if(DEFINED FILE)
@@ -14,6 +14,9 @@ if(NOT code STREQUAL "${EXIT}")
 endif()
 if(DEFINED MATCH AND NOT all MATCHES "${MATCH}")
   message(FATAL_ERROR "the output does not match '${MATCH}':\n${all}")
+endif()
+if(DEFINED NOT_MATCH AND all MATCHES "${NOT_MATCH}")
+  message(FATAL_ERROR "the output matches '${NOT_MATCH}' ('${CMAKE_MATCH_0}'):\n${all}")
 endif()
 if(DEFINED LINES)
   string(REGEX MATCHALL "\n" newlines "${out}")

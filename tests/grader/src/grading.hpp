@@ -25,6 +25,7 @@ struct Settings {
   std::size_t output_kept = 64 * 1024;  ///< bytes of a test's output kept
   std::size_t output_limit = 8u << 20;  ///< bytes: printing more stops the test
   std::vector<int> tasks{1, 2, 3, 4, 5};  ///< the tasks graded
+  bool hidden = true;  ///< whether the hidden tests run too (a student's check: false)
 };
 
 struct TestResult {

@@ -160,6 +160,7 @@ int grade(Options options) {
   Settings settings = options.settings;
   settings.tasks = options.tasks;
   settings.work = options.work;
+  settings.hidden = !options.student;  // a student's check never shows the hidden tests
   check_apart(options.out, submissions);
   check_apart(settings.work, submissions);
   prepare(options.out);
@@ -168,13 +169,21 @@ int grade(Options options) {
   Grader grader(kit, tests, settings);
   std::cerr << "springlab-grade: the reference's time per test (measured once per build)\n";
   grader.calibrate(options.kit.parent_path() / "calibration.txt");
-  if (options.student)
+  if (options.student) {
     std::cerr << "springlab-grade: compiling your code, then running each test in a process of "
               << "its own, plainly and with the sanitizers (which check every memory access)\n";
-  else
+  } else {
+    const auto hidden = std::count_if(tests.begin(), tests.end(), [&](const TestInfo& t) {
+      return t.hidden && std::count(options.tasks.begin(), options.tasks.end(), t.task) > 0;
+    });
     std::cerr << "springlab-grade: grading " << submissions.size() << " submission"
               << (submissions.size() == 1 ? "" : "s") << " (" << settings.jobs
-              << " processes at once; a test may take " << grader.time_limit_text() << ")\n";
+              << " processes at once; a test may take " << grader.time_limit_text() << ")";
+    if (hidden > 0)
+      std::cerr << ", hidden tests included (" << hidden << ", shown to students after the due "
+                << "date)";
+    std::cerr << "\n";
+  }
 
   bool all_passed = true;
   std::size_t finished = 0;

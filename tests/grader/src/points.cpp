@@ -4,14 +4,15 @@
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace springlab::grader {
 
 std::vector<TestInfo> parse_test_list(const std::string& listing) {
   std::vector<TestInfo> tests;
-  std::map<int, int> counts;
   std::istringstream lines(listing);
   std::string line;
   while (std::getline(lines, line)) {
@@ -27,12 +28,26 @@ std::vector<TestInfo> parse_test_list(const std::string& listing) {
       const std::string& t = test.tags.back();
       if (t.size() == 5 && t.rfind("task", 0) == 0 && t[4] >= '1' && t[4] <= '5')
         test.task = t[4] - '0';
+      if (t == "hidden") test.hidden = true;
     }
     if (test.task == 0) continue;
-    test.number = ++counts[test.task];
     tests.push_back(std::move(test));
   }
+  std::stable_sort(tests.begin(), tests.end(), [](const TestInfo& a, const TestInfo& b) {
+    return std::pair(a.task, a.hidden) < std::pair(b.task, b.hidden);
+  });
+  std::map<int, int> counts;
+  for (TestInfo& test : tests)
+    test.number = ++counts[test.task];
   return tests;
+}
+
+std::vector<const TestInfo*> tests_of_task(const std::vector<TestInfo>& tests, int task,
+                                           bool with_hidden) {
+  std::vector<const TestInfo*> chosen;
+  for (const TestInfo& test : tests)
+    if (test.task == task && (with_hidden || !test.hidden)) chosen.push_back(&test);
+  return chosen;
 }
 
 void assign_points(std::vector<TestInfo>& tests, const std::filesystem::path& file) {
@@ -70,11 +85,13 @@ void assign_points(std::vector<TestInfo>& tests, const std::filesystem::path& fi
     double fallback = 1.0;
     if (const toml::node* d = section->get("default"))
       fallback = points_of(*d, task_key + ".default");
+    double hidden = fallback;  // a hidden test's, unless the section says otherwise
+    if (const toml::node* h = section->get("hidden")) hidden = points_of(*h, task_key + ".hidden");
     for (TestInfo& test : tests)
-      if (test.task == task) test.points = fallback;
+      if (test.task == task) test.points = test.hidden ? hidden : fallback;
     for (const auto& [name_key, value] : *section) {
       const std::string name(name_key.str());
-      if (name == "default") continue;
+      if (name == "default" || name == "hidden") continue;
       const double points = points_of(value, "[" + task_key + "] \"" + name + "\"");
       bool known = false;
       for (TestInfo& test : tests)

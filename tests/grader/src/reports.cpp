@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -144,7 +145,8 @@ std::string task_feedback(const SubmissionResult& result, int task, const Kit& k
     out << "  the compiler warns (the tests still run):\n"
         << indented(printable(r.warnings), "    ");
   for (const TestResult& t : r.tests) {
-    out << "  " << t.test->name << " ... " << (t.passed ? "pass" : "FAIL") << '\n';
+    out << "  " << t.test->name << " ... " << (t.passed ? "pass" : "FAIL")
+        << (t.test->hidden ? std::string(" ") + hidden_mark : "") << '\n';
     if (!t.passed) out << indented(failure_text(t, printed_in_feedback), "        ");
   }
   out << '\n'
@@ -181,6 +183,13 @@ std::string feedback(const SubmissionResult& result, const Kit& kit) {
   return text + summary_feedback(result);
 }
 
+SubmissionResult visible_part(const SubmissionResult& result) {
+  SubmissionResult visible = result;
+  for (auto& [task, r] : visible.tasks)
+    std::erase_if(r.tests, [](const TestResult& t) { return t.test->hidden; });
+  return visible;
+}
+
 std::string results_json(const SubmissionResult& result, double seconds) {
   using nlohmann::json;
   json tests = json::array();
@@ -197,6 +206,8 @@ std::string results_json(const SubmissionResult& result, double seconds) {
       json tags = json::array({"task" + std::to_string(task)});
       for (const std::string& tag : t.test->tags)
         if (tag != tags.front()) tags.push_back(tag);
+      if (t.test->hidden && std::find(tags.begin(), tags.end(), "hidden") == tags.end())
+        tags.push_back("hidden");
       tests.push_back({{"name", "Task " + std::to_string(task) + ": " + t.test->name},
                        {"number", std::to_string(task) + "." + std::to_string(t.test->number)},
                        {"score", t.passed ? t.test->points : 0.0},
@@ -204,11 +215,20 @@ std::string results_json(const SubmissionResult& result, double seconds) {
                        {"status", t.passed ? "passed" : "failed"},
                        {"output", output},
                        {"tags", tags},
-                       {"visibility", "visible"}});
+                       {"visibility", t.test->hidden ? "after_due_date" : "visible"}});
     }
-  // Gradescope shows the top-level output above the tests: what was missing or left out must
-  // be said there too, not only in each of the task's tests.
-  std::string output = summary_feedback(result);
+  // Gradescope shows the run's output at once: it must not tell how the hidden tests went; and
+  // what was missing or left out must be said there too, not only in each of the task's tests.
+  const SubmissionResult visible = visible_part(result);
+  std::size_t hidden = 0;
+  double hidden_points = 0.0;
+  for (const auto& [task, r] : result.tasks)
+    for (const TestResult& t : r.tests)
+      if (t.test->hidden) ++hidden, hidden_points += t.test->points;
+  std::string output = summary_feedback(visible);
+  if (hidden > 0)
+    output += "  and " + std::to_string(hidden) + " hidden test" + (hidden == 1 ? "" : "s") + " (" +
+              points_text(hidden_points) + " points), shown after the due date\n";
   std::string notes;
   for (const auto& [task, r] : result.tasks)
     for (const std::string& note : r.notes)

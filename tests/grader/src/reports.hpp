@@ -11,8 +11,11 @@
 
 namespace springlab::grader {
 
-/// Task `task`'s part of the feedback: a heading, one line per test, the first failure of each
-/// failing test explained, and a closing count.
+/// The line that marks a hidden test in the feedback (instructors see it; students never do).
+inline constexpr const char* hidden_mark = "(hidden test: students see it after the due date)";
+
+/// Task `task`'s part of the feedback: a heading, one line per test (a hidden test's marked),
+/// the first failure of each failing test explained, and a closing count.
 std::string task_feedback(const SubmissionResult& result, int task, const Kit& kit);
 
 /// The closing summary: one line per task graded and the total.
@@ -21,8 +24,14 @@ std::string summary_feedback(const SubmissionResult& result);
 /// Every task's feedback, then the summary (feedback.txt).
 std::string feedback(const SubmissionResult& result, const Kit& kit);
 
+/// What students may see before the due date: `result` without its hidden tests (their points
+/// out of the totals too).
+SubmissionResult visible_part(const SubmissionResult& result);
+
 /// results.json for Gradescope: one entry per test with score, max_score, status, output, tags
-/// (taskN and the test's own) and visibility; `seconds` is the run's execution_time.
+/// (taskN and the test's own) and visibility ("visible", or "after_due_date" for a hidden test);
+/// the run's output summarises the visible tests only, its score counts every test; `seconds` is
+/// the run's execution_time.
 std::string results_json(const SubmissionResult& result, double seconds);
 
 /// A JUnit XML report of one task.

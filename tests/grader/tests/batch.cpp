@@ -1,8 +1,11 @@
 // The grader's proof, in one batch as CI runs it (label grader): the starter code scores nothing
 // and says what to write, the solutions score everything, every mutant (tests/mutants/*.patch)
-// loses points in its own task and in no other, and every hostile or broken submission
-// (tests/grader/hostile/*/, see expect.toml there) gets the score and the feedback it must; the
-// submissions and the kit's sources on disk are unchanged afterwards, and no report grows large.
+// loses points in its own task and in no other, by failing a public test, and every hostile or
+// broken submission (tests/grader/hostile/*/, see expect.toml there) gets the score and the
+// feedback it must; the submissions and the kit's sources on disk are unchanged afterwards, and
+// no report grows large. When the kit has hidden tests (tests/hidden/), they are graded too,
+// reported as hidden, and each mutant in tests/hidden/mutants/ passes every public test of its
+// task and fails a hidden one: the reason those tests exist.
 #include "process.hpp"
 #include "reports.hpp"
 
@@ -10,6 +13,7 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -29,12 +33,20 @@ const fs::path submissions = batch / "submissions";
 
 enum class Points { full, none, some, less };
 
+// Which of its task's tests a mutant must fail: at least one public test (what a student sees
+// before the due date), or hidden tests only (tests/hidden/mutants/).
+enum class CaughtBy { any, public_tests, hidden_only };
+
 struct Expectation {
   std::string name;  // the submission's folder, and its row in the gradebook
   std::string what;
   std::map<int, Points> points;         // per task
   std::map<int, std::string> feedback;  // per task: a regex its feedback must match
+  CaughtBy caught_by = CaughtBy::any;
+  int task = 0;  // a mutant's task
 };
+
+const fs::path hidden_tests = kit / "tests" / "hidden";
 
 std::string read(const fs::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -156,14 +168,17 @@ Expectation hostile(const fs::path& folder) {
 }
 
 // A mutant: the solutions with one patch applied; its own task loses points, no other does.
-Expectation mutant(const fs::path& patch) {
+Expectation mutant(const fs::path& patch, CaughtBy caught_by) {
   const std::string text = read(patch);
   std::smatch m;
   REQUIRE(std::regex_search(text, m, std::regex(R"(\n\+\+\+ b/(task\d)[^/]*/)")));
   const int task = m[1].str()[4] - '0';
-  Expectation e = all("mutant-" + patch.stem().string(), "the mutant " + patch.filename().string(),
-                      Points::full);
+  const std::string prefix = caught_by == CaughtBy::hidden_only ? "hidden-mutant-" : "mutant-";
+  Expectation e =
+      all(prefix + patch.stem().string(), "the mutant " + patch.filename().string(), Points::full);
   e.points[task] = Points::less;
+  e.caught_by = caught_by;
+  e.task = task;
   const fs::path target = submissions / e.name;
   fs::copy(kit / "solutions", target, fs::copy_options::recursive);
   const auto [status, output] = run({SPRINGLAB_PATCH, "--fuzz=0", "--silent", "-p1", "-d",
@@ -215,7 +230,12 @@ TEST_CASE(
   fs::copy(kit / "solutions", submissions / "solutions", fs::copy_options::recursive);
   expected.push_back(all("solutions", "the solutions", Points::full));
   for (const auto& entry : fs::directory_iterator(kit / "tests" / "mutants"))
-    if (entry.path().extension() == ".patch") expected.push_back(mutant(entry.path()));
+    if (entry.path().extension() == ".patch")
+      expected.push_back(mutant(entry.path(), CaughtBy::public_tests));
+  if (fs::is_directory(hidden_tests / "mutants"))
+    for (const auto& entry : fs::directory_iterator(hidden_tests / "mutants"))
+      if (entry.path().extension() == ".patch")
+        expected.push_back(mutant(entry.path(), CaughtBy::hidden_only));
   for (const auto& entry : fs::directory_iterator(kit / "tests" / "grader" / "hostile"))
     if (entry.is_directory()) expected.push_back(hostile(entry.path()));
 
@@ -273,6 +293,21 @@ TEST_CASE(
           break;
       }
     }
+    if (e.caught_by != CaughtBy::any) {
+      // Its task's tests in its results.json: public ones are "visible", hidden ones shown
+      // "after_due_date".
+      const auto results =
+          nlohmann::json::parse(read(batch / "results" / results_folder(e.name) / "results.json"));
+      int public_failed = 0, hidden_failed = 0;
+      for (const auto& test : results["tests"])
+        if (test["tags"][0] == "task" + std::to_string(e.task) && test["status"] == "failed")
+          ++(test["visibility"] == "visible" ? public_failed : hidden_failed);
+      INFO("task " << e.task << ": " << public_failed << " public and " << hidden_failed
+                   << " hidden tests failed\n"
+                   << section(feedback, e.task));
+      if (e.caught_by == CaughtBy::public_tests) CHECK(public_failed > 0);
+      if (e.caught_by == CaughtBy::hidden_only) CHECK((public_failed == 0 && hidden_failed > 0));
+    }
     for (const auto& [task, pattern] : e.feedback) {
       INFO("task " << task << " feedback must match /" << pattern << "/:\n"
                    << section(feedback, task));
@@ -281,6 +316,24 @@ TEST_CASE(
     CHECK(snapshot(submissions / e.name) == before[e.name]);
   }
 
+  // The hidden tests, when the kit has them: in every task, shown after the due date, tagged and
+  // marked in the feedback; the public ones visible.
+  if (fs::is_directory(hidden_tests)) {
+    std::vector<int> hidden(6, 0);
+    for (const auto& test : solutions["tests"]) {
+      const auto& tags = test["tags"];
+      const bool tagged = std::find(tags.begin(), tags.end(), "hidden") != tags.end();
+      INFO(test["name"].get<std::string>());
+      CHECK(test["visibility"] == (tagged ? "after_due_date" : "visible"));
+      hidden[std::size_t(tags[0].get<std::string>()[4] - '0')] += tagged;
+    }
+    for (int task = 1; task <= 5; ++task) {
+      INFO("task " << task << " has no hidden test");
+      CHECK(hidden[std::size_t(task)] > 0);
+    }
+    const std::string feedback = read(batch / "results" / "solutions" / "feedback.txt");
+    CHECK_THAT(feedback, Catch::Contains(std::string("... pass ") + hidden_mark));
+  }
   // The starter code fails every test by saying what to write.
   const auto starter = nlohmann::json::parse(read(batch / "results" / "starter" / "results.json"));
   for (const auto& test : starter["tests"]) {

@@ -78,3 +78,56 @@ TEST_CASE("Points: mistakes in the file are named with the value and what is all
              Catch::Contains("[task9]: allowed sections are [task1] ... [task5]"));
   CHECK_THAT(rejection(tests, "[task1\n"), Catch::Contains("springlab-points-test.toml:1"));
 }
+
+namespace {
+
+// Task 1 with a hidden test listed between its public ones, as a harness could list them.
+const std::string listing_with_hidden =
+    "[spring][task1]\tSpring: one\n"
+    "[hidden][task1]\tSpring: hidden\n"
+    "[task1]\tSpring: two\n"
+    "[task2][hidden]\tGrid: hidden\n";
+
+}  // namespace
+
+TEST_CASE("Hidden tests: known by their tag, numbered after their task's public tests",
+          "[points][hidden]") {
+  const std::vector<TestInfo> tests = parse_test_list(listing_with_hidden);
+  REQUIRE(tests.size() == 4);
+  CHECK((tests[0].name == "Spring: one" && !tests[0].hidden && tests[0].number == 1));
+  CHECK((tests[1].name == "Spring: two" && !tests[1].hidden && tests[1].number == 2));
+  CHECK((tests[2].name == "Spring: hidden" && tests[2].hidden && tests[2].number == 3));
+  CHECK((tests[3].task == 2 && tests[3].hidden && tests[3].number == 1));
+}
+
+TEST_CASE("Hidden tests: run in an instructor's grading, left out of a student's check",
+          "[points][hidden]") {
+  const std::vector<TestInfo> tests = parse_test_list(listing_with_hidden);
+  const auto names = [](const std::vector<const TestInfo*>& chosen) {
+    std::vector<std::string> result;
+    for (const TestInfo* test : chosen)
+      result.push_back(test->name);
+    return result;
+  };
+  CHECK(names(tests_of_task(tests, 1, true)) ==
+        std::vector<std::string>{"Spring: one", "Spring: two", "Spring: hidden"});
+  CHECK(names(tests_of_task(tests, 1, false)) ==
+        std::vector<std::string>{"Spring: one", "Spring: two"});
+  CHECK(tests_of_task(tests, 2, false).empty());
+}
+
+TEST_CASE("Points of hidden tests: the task's default, its `hidden` key, or their own by name",
+          "[points][hidden]") {
+  std::vector<TestInfo> tests = parse_test_list(listing_with_hidden);
+  assign_points(tests, write_points("[task1]\ndefault = 2\n[task2]\ndefault = 3\n"));
+  CHECK(tests[2].points == 2.0);  // no `hidden` key: like the others
+  CHECK(tests[3].points == 3.0);
+  assign_points(tests, write_points("[task1]\ndefault = 2\nhidden = 5\n"
+                                    "[task2]\nhidden = 0.5\n\"Grid: hidden\" = 4\n"));
+  CHECK(tests[0].points == 2.0);
+  CHECK(tests[1].points == 2.0);
+  CHECK(tests[2].points == 5.0);
+  CHECK(tests[3].points == 4.0);  // its name wins over the key
+  CHECK_THAT(rejection(tests, "[task1]\nhidden = -1\n"),
+             Catch::Contains("task1.hidden = -1: allowed a number of points from 0 to 1000000"));
+}

@@ -117,3 +117,56 @@ TEST_CASE("Feedback: one line per test, the failure explained, and a count in po
   CHECK_THAT(text, Catch::Contains("==> Summary: 2 of 4.5 points\n  task 1: 1 of 2 tests pass"));
   CHECK_THAT(text, Catch::Contains("  task 2: does not compile (0 of 1.5 points)"));
 }
+
+namespace {
+
+// Task 1 with a public test that passes and a hidden one that fails, worth 3 points.
+struct WithHidden {
+  std::vector<TestInfo> tests = {{"Spring: one", {"task1", "spring"}, 1, 1, 1.0, false},
+                                 {"Spring: secret", {"hidden", "task1"}, 1, 2, 3.0, true}};
+  SubmissionResult result;
+  WithHidden() {
+    result.submission.name = "alice";
+    TaskResult& one = result.tasks[1];
+    one.task = 1;
+    one.tests = {{&tests[0], true, "", "", 0, 0.1, 0.2},
+                 {&tests[1], false, "k = 45: the force is 20/45 of Hooke's", "", 0, 0.1, 0}};
+  }
+};
+
+}  // namespace
+
+TEST_CASE("results.json: a hidden test is shown after the due date, and its result nowhere else",
+          "[reports][hidden]") {
+  const WithHidden e;
+  const auto json = nlohmann::json::parse(results_json(e.result, 1.0));
+  REQUIRE(json["tests"].size() == 2);
+  CHECK(json["tests"][0]["visibility"] == "visible");
+  const auto& hidden = json["tests"][1];
+  CHECK(hidden["visibility"] == "after_due_date");
+  CHECK(hidden["tags"] == nlohmann::json::array({"task1", "hidden"}));
+  CHECK(hidden["max_score"] == 3.0);
+  CHECK_THAT(hidden["output"].get<std::string>(), Catch::Contains("20/45 of Hooke's"));
+  CHECK(json["score"] == 1.0);  // every test counts
+  // The run's output, which Gradescope shows at once, counts the public tests only.
+  const std::string output = json["output"].get<std::string>();
+  CHECK_THAT(output, Catch::Contains("==> Summary: 1 of 1 points\n  task 1: 1 of 1 tests pass"));
+  CHECK_THAT(output, Catch::Contains("and 1 hidden test (3 points), shown after the due date"));
+  CHECK_THAT(output, !Catch::Contains("secret") && !Catch::Contains("Hooke"));
+}
+
+TEST_CASE("Feedback: an instructor sees the hidden tests marked; the visible part has none",
+          "[reports][hidden]") {
+  Kit kit;
+  kit.task_files = {{1, {"task1_two_masses/spring_damper.cpp"}}};
+  const WithHidden e;
+  CHECK_THAT(feedback(e.result, kit),
+             Catch::Contains("  Spring: one ... pass\n  Spring: secret ... FAIL (hidden test: "
+                             "students see it after the due date)\n") &&
+                 Catch::Contains("1 of 2 tests pass (1 of 4 points)"));
+  const SubmissionResult visible = visible_part(e.result);
+  CHECK(visible.max_points() == 1.0);
+  const std::string text = feedback(visible, kit);
+  CHECK_THAT(text, !Catch::Contains("secret") && !Catch::Contains("hidden"));
+  CHECK_THAT(text, Catch::Contains("1 of 1 tests pass (1 of 1 points)."));
+}

@@ -1,0 +1,66 @@
+// Task 5, hidden until the due date (tests/hidden/README.md): a one-column fabric (a rope) with
+// its own mass, springs and a steady, slanted wind, run until it rests. The public tests never
+// let the wind and gravity act together on a grid that must come to rest.
+#include "springlab/task5_fabric.hpp"
+#include "lab_testing.hpp"
+#include "springlab/this_implementation.hpp"
+
+#include <Eigen/Cholesky>
+
+#include <cmath>
+
+using namespace springlab;
+using namespace springlab::testing;
+
+TEST_CASE(
+    "A rope hanging in a steady wind comes to rest straight along weight plus drag, each link "
+    "stretched by the load below it",
+    "[task5][hidden][gravity][wind][pins]") {
+  INFO(
+      "(5.2), (5.3), (5.5): at rest every free particle feels F = m g + c w, the same for all, so "
+      "the rope lines up with F and its links and bend springs hold the load below them: K u = "
+      "|F| for the stretches u along the rope, as in handout (5.6)");
+  const bool bend = GENERATE(false, true);
+  const int rows = 8;
+  const double a = 0.5;  // spacing and structural rest length, m
+  SceneParameters p = task_scene(5);
+  p.rows = rows;
+  p.cols = 1;
+  p.spacing = a;
+  p.mass = 0.3;
+  p.structural = {true, 60.0, 0.3, a};
+  p.shear.enabled = false;  // a single column has no cells
+  p.bend = {bend, 15.0, 0.3, 2.0 * a};
+  // Steady (no gusts) and slanted; the drag also damps every motion, so the rope settles.
+  p.wind = {true, Vec2(1.0, 0.25), 6.0, 0.4, 0.0, 3.0, 1};
+  p.pinned = "top-row";
+  p.integrator = "verlet";
+  Simulation sim(p, implementation());
+  sim.advance(6000);
+  const Vec2 load = p.mass * p.gravity.acceleration +
+                    p.wind.drag * p.wind.speed * p.wind.direction.normalized();  // N
+  const Vec2 along = load.normalized();
+  // The stretches u_1 … u_{rows-1} of the rows below the pinned one along the rope, from the
+  // balance of its springs: structural between neighbours, bend two rows apart.
+  const int n = rows - 1;
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+  const auto spring = [&](int top, int bottom, double stiffness) {  // rows; row 0 is pinned
+    k(bottom - 1, bottom - 1) += stiffness;
+    if (top == 0) return;
+    k(top - 1, top - 1) += stiffness;
+    k(top - 1, bottom - 1) -= stiffness;
+    k(bottom - 1, top - 1) -= stiffness;
+  };
+  for (int row = 0; row + 1 < rows; ++row)
+    spring(row, row + 1, p.structural.k);
+  for (int row = 0; bend && row + 2 < rows; ++row)
+    spring(row, row + 2, p.bend.k);
+  const Eigen::VectorXd stretch = k.ldlt().solve(Eigen::VectorXd::Constant(n, load.norm()));
+  CAPTURE(bend, load, sim.diagnostics().kinetic);
+  REQUIRE(sim.diagnostics().kinetic < 1e-20);
+  for (int row = 1; row < rows; ++row) {
+    const Vec2 expected = grid_position(0, 0, a) + (row * a + stretch[row - 1]) * along;
+    CAPTURE(row, stretch[row - 1]);
+    CHECK_THAT(Vec2(sim.particles().position.col(row)), IsNear(expected, 1e-9));
+  }
+}
