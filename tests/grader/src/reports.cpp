@@ -47,6 +47,33 @@ std::string count_text(const TaskResult& r) {
          points_text(r.points()) + " of " + points_text(r.max_points()) + " points)";
 }
 
+// What a task whose every test failed on a starter stub asks for first ("write verlet_step in
+// tasks/task4_verlet/verlet.cpp, handout section 4"), from the stub's message ("Task 4 is not
+// implemented yet: write ... (see handout section 4)"); "" for a task that was started.
+std::string not_started(const TaskResult& r) {
+  const std::string marker = " is not implemented yet: ";
+  const bool untouched =
+      !r.tests.empty() && std::all_of(r.tests.begin(), r.tests.end(), [&](const TestResult& t) {
+        return !t.passed && t.message.find(marker) != std::string::npos;
+      });
+  if (!untouched) return "";
+  const std::string& m = r.tests.front().message;
+  std::string what = m.substr(m.find(marker) + marker.size());
+  what = what.substr(0, what.find('\n'));
+  if (const auto see = what.rfind(" (see "); see != std::string::npos && what.back() == ')')
+    what = what.substr(0, see) + ", " + what.substr(see + 6, what.size() - see - 7);
+  return printable(what);
+}
+
+// After a task's count in the summary: not started (what to write first), or the first failure.
+std::string state_text(const TaskResult& r) {
+  const auto failed =
+      std::find_if(r.tests.begin(), r.tests.end(), [](const TestResult& t) { return !t.passed; });
+  if (failed == r.tests.end()) return "";
+  if (const std::string what = not_started(r); !what.empty()) return ": not started (" + what + ")";
+  return ": first failure: " + printable(failed->test->name);
+}
+
 std::string xml(const std::string& text) {
   std::string out;
   for (const char c : printable(text)) {
@@ -152,7 +179,8 @@ std::string task_feedback(const SubmissionResult& result, int task, const Kit& k
   out << '\n'
       << count_text(r)
       << (r.passed() == int(r.tests.size()) ? "."
-                                            : "; fix the first FAIL above first, then run again.")
+          : not_started(r).empty()          ? "; fix the first FAIL above first, then run again."
+                                            : "; not started yet: " + not_started(r) + ".")
       << '\n';
   return out.str();
 }
@@ -171,7 +199,7 @@ std::string summary_feedback(const SubmissionResult& result) {
       out << printable(r.problem.substr(0, r.problem.find('\n'))) << " (0 of "
           << points_text(r.max_points()) << " points)\n";
     else
-      out << count_text(r) << '\n';
+      out << count_text(r) << state_text(r) << '\n';
   }
   return out.str();
 }

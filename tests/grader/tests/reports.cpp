@@ -114,7 +114,8 @@ TEST_CASE("Feedback: one line per test, the failure explained, and a count in po
                                    "        a <bad> & \"quoted\" failure\n"));
   CHECK_THAT(text, Catch::Contains("1 of 2 tests pass (2 of 3 points); fix the first FAIL"));
   CHECK_THAT(text, Catch::Contains("  does not compile:\n  spring_forces.cpp:3: error"));
-  CHECK_THAT(text, Catch::Contains("==> Summary: 2 of 4.5 points\n  task 1: 1 of 2 tests pass"));
+  CHECK_THAT(text, Catch::Contains("==> Summary: 2 of 4.5 points\n  task 1: 1 of 2 tests pass "
+                                   "(2 of 3 points): first failure: Spring: two\n"));
   CHECK_THAT(text, Catch::Contains("  task 2: does not compile (0 of 1.5 points)"));
 }
 
@@ -169,4 +170,27 @@ TEST_CASE("Feedback: an instructor sees the hidden tests marked; the visible par
   const std::string text = feedback(visible, kit);
   CHECK_THAT(text, !Catch::Contains("secret") && !Catch::Contains("hidden"));
   CHECK_THAT(text, Catch::Contains("1 of 1 tests pass (1 of 1 points)."));
+}
+
+TEST_CASE("Summary: a task not started says what to write first; one that passes says no more",
+          "[reports]") {
+  const std::vector<TestInfo> tests = {{"Spring: one", {"task1"}, 1, 1, 1.0, false},
+                                       {"Spring: two", {"task1"}, 1, 2, 1.0, false}};
+  const std::string stub =
+      "Task 1 is not implemented yet: write spring_force in "
+      "tasks/task1_two_masses/spring_damper.cpp (see handout section 1)";
+  SubmissionResult result;
+  result.tasks[1].tests = {{&tests[0], false, stub, "", 0, 0.1, 0},
+                           {&tests[1], false, stub + "\nmore", "", 0, 0.1, 0}};
+  CHECK_THAT(summary_feedback(result),
+             Catch::Contains("  task 1: 0 of 2 tests pass (0 of 2 points): not started (write "
+                             "spring_force in tasks/task1_two_masses/spring_damper.cpp, handout "
+                             "section 1)\n"));
+  // Started: one test fails otherwise, so the first failure is named instead.
+  result.tasks[1].tests[1].message = "got 0.5 N, expected 1 N";
+  CHECK_THAT(summary_feedback(result),
+             Catch::EndsWith("(0 of 2 points): first failure: Spring: one\n"));
+  result.tasks[1].tests[0].passed = result.tasks[1].tests[1].passed = true;
+  CHECK_THAT(summary_feedback(result),
+             Catch::EndsWith("  task 1: 2 of 2 tests pass (2 of 2 points)\n"));
 }
