@@ -97,14 +97,21 @@ void benchmark_report(const std::vector<double>& frames, long steps, double seco
 
 void print_summary(const Session& session, std::ostream& out) {
   const SceneParameters& p = session.parameters();
-  out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, " << p.rows * p.cols
-      << " particles, ";
+  const auto counted = [](std::size_t n, const char* thing) {
+    return std::to_string(n) + " " + thing + (n == 1 ? "" : "s");
+  };
+  out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, "
+      << counted(std::size_t(p.rows * p.cols), "particle") << ", ";
   if (const Simulation* sim = session.primary()) {
     const Diagnostics d = sim->diagnostics();
-    out << sim->scene().springs.size() << " springs\n"
-        << "code " << sim->implementation().name << ", integrator " << p.integrator
-        << ", h = " << p.step << " s, t = " << session.time() << " s; energy " << d.total()
-        << " J (kinetic " << d.kinetic << ", spring " << d.potential << ")\n";
+    const int task = sim->implementation().student_task;
+    out << counted(sim->scene().springs.size(), "spring") << "\n"
+        << "code: "
+        << (task == 0 ? std::string("the reference")
+                      : "your task " + std::to_string(task) + " code, the reference for the rest")
+        << "; integrator " << p.integrator << ", h = " << p.step << " s, t = " << session.time()
+        << " s; energy " << d.total() << " J (kinetic " << d.kinetic << ", potential "
+        << d.potential << ")\n";
   } else {
     out << "no simulation\n";
   }

@@ -73,11 +73,14 @@ std::string parameter_list() {
   return out.str();
 }
 
+std::string counted(std::size_t n, const std::string& thing) {
+  return std::to_string(n) + " " + thing + (n == 1 ? "" : "s");
+}
+
 std::string code_name(const Implementation& impl) {
-  if (impl.student_task == 0) return "reference";
+  if (impl.student_task == 0) return "the reference";
   const std::string task = std::to_string(impl.student_task);
-  return "the student's task " + task + " (tasks/task" + task +
-         "_*) with the reference for the rest";
+  return "your task " + task + " code (tasks/task" + task + "_*), the reference for the rest";
 }
 
 long steps_for(const SceneParameters& p) {
@@ -91,12 +94,13 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
   const Diagnostics end = sim.diagnostics();
   const SceneParameters& p = sim.parameters();
   out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, "
-      << sim.particles().size() << " particles, " << sim.scene().springs.size() << " springs\n"
-      << "code " << code_name(sim.implementation()) << ", integrator " << p.integrator
+      << counted(sim.particles().size(), "particle") << ", "
+      << counted(sim.scene().springs.size(), "spring") << "\n"
+      << "code: " << code_name(sim.implementation()) << "; integrator " << p.integrator
       << ", h = " << p.step << " s, " << sim.steps_taken() << " steps to t = " << sim.time()
       << " s\n"
       << "energy " << start.total() << " J -> " << end.total() << " J (kinetic " << end.kinetic
-      << ", spring " << end.potential << "); momentum (" << end.momentum.x() << ", "
+      << ", potential " << end.potential << "); momentum (" << end.momentum.x() << ", "
       << end.momentum.y() << ") kg*m/s\n"
       << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time\n";
 }
