@@ -65,6 +65,13 @@ std::string not_started(const TaskResult& r) {
   return printable(what);
 }
 
+// A problem's first line ends with a colon when its details follow; the summary has none.
+std::string without_colon(std::string line) {
+  while (!line.empty() && (line.back() == ':' || line.back() == ' '))
+    line.pop_back();
+  return line;
+}
+
 // After a task's count in the summary: not started (what to write first), or the first failure.
 std::string state_text(const TaskResult& r) {
   const auto failed =
@@ -196,7 +203,7 @@ std::string summary_feedback(const SubmissionResult& result) {
     if (r.problem.rfind("does not compile", 0) == 0)
       out << "does not compile (0 of " << points_text(r.max_points()) << " points)\n";
     else if (!r.problem.empty())
-      out << printable(r.problem.substr(0, r.problem.find('\n'))) << " (0 of "
+      out << printable(without_colon(r.problem.substr(0, r.problem.find('\n')))) << " (0 of "
           << points_text(r.max_points()) << " points)\n";
     else
       out << count_text(r) << state_text(r) << '\n';
