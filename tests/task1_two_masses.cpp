@@ -2,6 +2,7 @@
 // Every expectation comes from physics or from the theory of the method, computed here.
 #include "springlab/task1_two_masses.hpp"
 #include "lab_testing.hpp"
+#include "mistakes.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/this_implementation.hpp"
 
@@ -37,7 +38,20 @@ TEST_CASE("Spring: Hooke's magnitude and direction, stretched, compressed and ro
   const Vec2 f = spring_force(r_p, r_q, k, rest);
   const Vec2 towards_q = -direction(angle);
   // A stretched spring pulls p towards q with k·(L - l0); a compressed one pushes it away.
-  CHECK_THAT(f.dot(towards_q), WithinRel(k * (length - rest), 1e-12));
+  const double pull = k * (length - rest);
+  std::vector<Suspect<double>> suspects{
+      {"the force uses the length |r_p - r_q| where (1.1) has the stretch |r_p - r_q| - l0",
+       k * length},
+      {"the direction r_p - r_q is not divided by its length |r_p - r_q| (1.1 needs a unit "
+       "vector)",
+       pull * length},
+      {"the force is divided by the rest length l0: (1.1) is k (L - l0), not k (L - l0) / l0",
+       pull / rest},
+      {"the force is multiplied by the rest length l0: (1.1) is k (L - l0)", pull * rest}};
+  for (const auto& usual : usual_suspects(pull, "the spring force (1.1)"))
+    suspects.push_back(usual);
+  INFO(recognise(f.dot(towards_q), suspects, 1e-9 * (1.0 + std::abs(pull))));
+  CHECK_THAT(f.dot(towards_q), WithinRel(pull, 1e-12));
   // Hooke's force acts along the spring only.
   CHECK_THAT(f.x() * towards_q.y() - f.y() * towards_q.x(), WithinAbs(0.0, 1e-12));
 }
@@ -55,7 +69,11 @@ TEST_CASE("Spring: no force at the rest length, in any direction", "[task1][spri
 TEST_CASE("Spring: ends in the same place give no force, not NaN", "[task1][spring]") {
   INFO("equation (1.1) has no direction when r_p = r_q; the header asks for a zero force then");
   const Vec2 r(0.3, -1.2);
-  CHECK_THAT(spring_force(r, r, 20.0, 1.0), IsNear(Vec2::Zero(), 0.0));
+  const Vec2 f = spring_force(r, r, 20.0, 1.0);
+  INFO((f.allFinite() ? ""
+                      : "likely mistake: with r_p = r_q the length is 0, and dividing by it gives "
+                        "NaN: return a zero force when the ends coincide, as the header says"));
+  CHECK_THAT(f, IsNear(Vec2::Zero(), 0.0));
 }
 
 TEST_CASE("Spring: the force on q is minus the force on p", "[task1][spring][momentum]") {
@@ -102,7 +120,12 @@ TEST_CASE("Damper: opposes the relative velocity, and F_qp = -F_pq", "[task1][da
     CAPTURE(trial, v_p, v_q, b, f);
     CHECK_THAT(damper_force(v_q, v_p, b), IsNear(-f, 1e-14));
     // Along the relative velocity, against it, with size b·|v_p - v_q|; nothing across it.
-    CHECK_THAT(f.dot(relative), WithinRel(-b * relative.squaredNorm(), 1e-12));
+    {
+      const double power = -b * relative.squaredNorm();
+      INFO(recognise(f.dot(relative), usual_suspects(power, "the damper force (1.2)"),
+                     1e-9 * std::abs(power)));
+      CHECK_THAT(f.dot(relative), WithinRel(power, 1e-12));
+    }
     CHECK_THAT(f.x() * relative.y() - f.y() * relative.x(), WithinAbs(0.0, 1e-12));
   }
   CHECK_THAT(damper_force(Vec2(0.3, -0.2), Vec2(0.3, -0.2), 0.1), IsNear(Vec2::Zero(), 1e-15));
@@ -139,12 +162,34 @@ TEST_CASE("Explicit Euler: one step checked by hand", "[task1][euler][integrator
   const Vectors r0 = r, v0 = v;
   const double h = 0.1;
   explicit_euler_step(model, h, r, v);
+  {
+    INFO((evaluations > 1 ? "likely mistake: your step evaluated the acceleration " +
+                                std::to_string(evaluations) +
+                                " times: explicit Euler evaluates a(r0, v0) once, before "
+                                "anything moves (1.5)"
+                          : std::string()));
+    CHECK(evaluations == 1);
+  }
   for (int i = 0; i < 3; ++i) {
     CAPTURE(i);
-    CHECK_THAT(Vec2(r.col(i)), IsNear(r0.col(i) + h * v0.col(i), 1e-14));
-    CHECK_THAT(Vec2(v.col(i)), IsNear(v0.col(i) + h * (-4.0 * r0.col(i) - 0.5 * v0.col(i)), 1e-14));
+    const Vec2 a0 = -4.0 * r0.col(i) - 0.5 * v0.col(i);
+    const Vec2 v1 = v0.col(i) + h * a0;
+    const Vec2 r1 = r0.col(i) + h * v0.col(i);
+    INFO(recognise(Vec2(r.col(i)),
+                   {{"the position moved with the new velocity v1 = v0 + h a: (1.4) uses v0, so "
+                     "update r before v (the state updated in the wrong order)",
+                     r0.col(i) + h * v1},
+                    {"the position did not move: (1.4) adds h v0", r0.col(i)}},
+                   1e-12));
+    CHECK_THAT(Vec2(r.col(i)), IsNear(r1, 1e-14));
+    INFO(recognise(Vec2(v.col(i)),
+                   {{"the acceleration was evaluated after the positions moved: (1.5) uses "
+                     "a(r0, v0), from the state at the start of the step",
+                     v0.col(i) + h * (-4.0 * r1 - 0.5 * v0.col(i))},
+                    {"the velocity did not change: (1.5) adds h a(r0, v0)", v0.col(i)}},
+                   1e-12));
+    CHECK_THAT(Vec2(v.col(i)), IsNear(v1, 1e-14));
   }
-  CHECK(evaluations == 1);
 }
 
 TEST_CASE("Two masses: internal forces cancel and momentum is conserved for thousands of steps",

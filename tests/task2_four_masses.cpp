@@ -2,6 +2,7 @@
 // Every expectation comes from physics or from the theory of the method, computed here.
 #include "springlab/task2_four_masses.hpp"
 #include "lab_testing.hpp"
+#include "mistakes.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/stability.hpp"
 #include "springlab/this_implementation.hpp"
@@ -41,31 +42,73 @@ Scene random_grid(int rows, int cols, bool shear, unsigned seed) {
   return scene;
 }
 
+// The summed spring forces (no dampers) as common mistakes in accumulate_spring_forces make them:
+// F_pq on one end only, on both ends with the same sign, every rest length taken as 1 m.
+std::vector<Suspect<Vectors>> spring_sum_mistakes(const std::vector<Spring>& springs,
+                                                  const Vectors& r) {
+  const auto sum = [&](double q_sign, double p_sign, bool unit_rest) {
+    Vectors f = Vectors::Zero(2, r.cols());
+    for (const Spring& s : springs) {
+      const Vec2 d = r.col(s.p) - r.col(s.q);
+      const double rest = unit_rest ? 1.0 : s.rest_length;
+      const Vec2 f_pq = -s.k * (d.norm() - rest) * d / d.norm();  // (1.1)
+      f.col(s.p) += p_sign * f_pq;
+      f.col(s.q) += q_sign * f_pq;
+    }
+    return f;
+  };
+  return {{"F_pq is added to both ends with the same sign: (2.4) gives q the opposite force, "
+           "F_qp = -F_pq",
+           sum(1.0, 1.0, false)},
+          {"only one end of each spring gets its force: (2.4) adds F_pq to p and -F_pq to q",
+           sum(0.0, 1.0, false)},
+          {"only one end of each spring gets its force: (2.4) adds F_pq to p and -F_pq to q",
+           sum(-1.0, 0.0, false)},
+          {"every spring has the rest length 1 m: use each spring's own rest length (2.3)",
+           sum(-1.0, 1.0, true)},
+          {"the spring forces have the opposite sign (1.1)", sum(1.0, -1.0, false)}};
+}
+
 }  // namespace
 
 TEST_CASE("Structural springs: the count, each neighbour pair once, no self-springs",
           "[task2][topology]") {
-  INFO("equation (2.2): rows*(cols-1) + cols*(rows-1) springs, right and down neighbours");
   const auto [rows, cols] =
       GENERATE(std::pair{1, 2}, std::pair{2, 1}, std::pair{2, 2}, std::pair{3, 3}, std::pair{3, 5},
                std::pair{5, 3}, std::pair{1, 7}, std::pair{4, 6});
   const SpringFamilyParameters family{true, 20.0, 0.1, 1.0};
   const std::vector<Spring> springs = structural_springs(rows, cols, family);
   CAPTURE(rows, cols);
-  REQUIRE(springs.size() == std::size_t(rows * (cols - 1) + cols * (rows - 1)));
+  {
+    INFO("equation (2.2): rows*(cols-1) + cols*(rows-1) springs, right and down neighbours");
+    const long expected = long(rows) * (cols - 1) + long(cols) * (rows - 1);
+    INFO(recognise_count(long(springs.size()), expected, "springs"));
+    REQUIRE(long(springs.size()) == expected);
+  }
+  INFO(
+      "equation (2.1): particle [i, j] has the index i*cols + j, from 0 to rows*cols - 1, and "
+      "each spring joins neighbours one row or one column apart");
   std::set<std::pair<int, int>> pairs;
   for (const Spring& s : springs) {
     CAPTURE(s.p, s.q);
+    const bool inside = std::min(s.p, s.q) >= 0 && std::max(s.p, s.q) < rows * cols;
+    INFO((inside ? ""
+                 : "likely mistake: an index outside the grid: check the index formula (2.1), "
+                   "i*cols + j (i*rows + j is right only on square grids)"));
+    REQUIRE(inside);
     REQUIRE(s.p != s.q);
-    REQUIRE(s.p >= 0);
-    REQUIRE(s.q >= 0);
-    REQUIRE(s.p < rows * cols);
-    REQUIRE(s.q < rows * cols);
     // Index i·cols + j (2.1): neighbours differ by one row or one column, never both.
     const int dr = std::abs(s.p / cols - s.q / cols), dc = std::abs(s.p % cols - s.q % cols);
+    INFO((dr + dc == 1 ? ""
+                       : "likely mistake: the spring joins particles that are not neighbours: "
+                         "check the index formula (2.1), i*cols + j"));
     CHECK(dr + dc == 1);
     pairs.insert(std::minmax(s.p, s.q));
   }
+  INFO((pairs.size() == springs.size()
+            ? ""
+            : "likely mistake: some pair is joined twice (in either order): join each particle "
+              "only to its right and lower neighbours (2.2)"));
   CHECK(pairs.size() == springs.size());  // no pair twice, in either order
 }
 
@@ -74,6 +117,7 @@ TEST_CASE("Structural springs carry the structural family's values", "[task2][to
   const SpringFamilyParameters family{true, 31.0, 0.7, 1.25};
   for (const Spring& s : structural_springs(3, 4, family)) {
     CAPTURE(s.p, s.q, to_string(s.family), s.k, s.b, s.rest_length);
+    INFO(recognise_family(s, SpringFamily::structural, family, "(2.2)"));
     CHECK(carries(s, SpringFamily::structural, family));
   }
 }
@@ -101,6 +145,7 @@ TEST_CASE("Spring forces: the sum is minus the gradient of the total spring ener
   const Vectors still = Vectors::Zero(2, r.cols());
   const Vectors f = summed_forces(scene.springs, r, still);
   const Vectors expected = energy_force(scene.springs, r);
+  INFO(recognise(f, spring_sum_mistakes(scene.springs, r), 1e-6 * (1.0 + expected.norm())));
   for (int i = 0; i < r.cols(); ++i) {
     CAPTURE(i);
     CHECK_THAT(Vec2(f.col(i)), IsNear(expected.col(i), 1e-6 * (1.0 + expected.col(i).norm())));
@@ -122,6 +167,8 @@ TEST_CASE("Damper forces: minus the gradient of the dissipation, so they never a
   double power = 0.0;
   for (int i = 0; i < r.cols(); ++i)
     power += f.col(i).dot(v.col(i));
+  INFO(recognise(power, usual_suspects(-2.0 * dissipation, "the dampers' power"),
+                 1e-9 * dissipation));
   CHECK(power <= 0.0);
   CHECK_THAT(power, WithinRel(-2.0 * dissipation, 1e-12));
   // And per particle: F_i = -sum over its springs of b (v_i - v_j), from dR/dv_i.
@@ -145,6 +192,8 @@ TEST_CASE("Spring forces are added to what is already there", "[task2][spring]")
   accumulate_spring_forces(scene.springs, r, v, force);
   const Vectors alone = summed_forces(scene.springs, r, v);
   REQUIRE(alone.norm() > 0.1);
+  INFO(recognise(force, {{"`force` was cleared (set to zero) first: add to what is there", alone}},
+                 1e-12));
   CHECK((force - alone - Vectors::Constant(2, r.cols(), 0.5)).norm() <= 1e-12);
 }
 

@@ -2,6 +2,7 @@
 // Every expectation comes from physics or from the theory of the method, computed here.
 #include "springlab/task3_shear_springs.hpp"
 #include "lab_testing.hpp"
+#include "mistakes.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/task2_four_masses.hpp"
 #include "springlab/this_implementation.hpp"
@@ -25,7 +26,14 @@ TEST_CASE("Shear springs: the count, both diagonals of each cell once, no self-s
   const SpringFamilyParameters family{true, 7.0, 0.05, std::numbers::sqrt2};
   const std::vector<Spring> springs = shear_springs(rows, cols, family);
   CAPTURE(rows, cols);
-  REQUIRE(springs.size() == std::size_t(2 * (rows - 1) * (cols - 1)));
+  {
+    const long expected = 2L * (rows - 1) * (cols - 1);
+    INFO((long(springs.size()) * 2 == expected
+              ? "likely mistake: one diagonal per cell: (3.1) has both, [i,j]-[i+1,j+1] and "
+                "[i,j+1]-[i+1,j]"
+              : recognise_count(long(springs.size()), expected, "shear springs")));
+    REQUIRE(long(springs.size()) == expected);
+  }
   std::set<std::pair<int, int>> pairs;
   std::set<std::pair<int, int>> cells_and_direction;
   for (const Spring& s : springs) {
@@ -49,6 +57,7 @@ TEST_CASE("Shear springs carry the shear family's own values", "[task3][topology
   const SpringFamilyParameters family{true, 7.5, 0.06, 1.5};
   for (const Spring& s : shear_springs(3, 4, family)) {
     CAPTURE(s.p, s.q, to_string(s.family), s.k, s.b, s.rest_length);
+    INFO(recognise_family(s, SpringFamily::shear, family, "(3.2)"));
     CHECK(carries(s, SpringFamily::shear, family));
   }
 }

@@ -1,5 +1,8 @@
 // The harness's Catch2 reporter: remembers, for the one test case run, its assertion counts and
-// its first failure with the equation it checks (INFO) and the values involved (CAPTURE). It
+// its first failure in a teacher's words: what was checked (the test's INFO, with its equation),
+// what the code gave and what was expected, the mistake a test recognised, and the values the
+// test varied (CAPTURE). Catch2's own form (the test's file, line and expression) follows on
+// lines marked "raw: ", which the grader shows only to whoever asks (springlab-grade --raw). It
 // writes nothing: main.cpp sends the outcome to the grader as a record.
 #define CATCH_CONFIG_EXTERNAL_INTERFACES  // the reporter base classes
 #include "reporter.hpp"
@@ -7,6 +10,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <array>
 
 namespace springlab::grading {
 
@@ -17,24 +21,126 @@ TestOutcome& test_outcome() {
 
 namespace {
 
-std::string explain(const Catch::AssertionStats& stats) {
-  const Catch::AssertionResult& result = stats.assertionResult;
-  if (result.getResultType() == Catch::ResultWas::ThrewException) {
-    // A task not written yet needs no more than its message; other exceptions get the context.
-    std::string text = result.getMessage();
-    if (text.find("is not implemented yet") != std::string::npos) return text;
-    text = "threw: " + text;
-    for (const Catch::MessageInfo& message : stats.infoMessages)
-      if (message.message != result.getMessage()) text += "\n" + message.message;
-    return text;
+constexpr std::string_view mistake_prefix = "likely mistake: ";
+
+// Got and expected from Catch2's expansion of a comparison ("28 == 4000", or one operand per
+// line when long) or of a matcher ("(0.095, 0.48) is within 1e-14 of (0.1, 0.5)"). Empty when
+// the expansion has no such shape (a plain `false`).
+struct GotExpected {
+  std::string got, expected;
+};
+
+GotExpected split_expansion(const std::string& expanded) {
+  // Matchers first: their words contain no comparison operator.
+  if (const auto at = expanded.find(" is within "); at != std::string::npos) {
+    const auto of = expanded.find(" of ", at);
+    if (of != std::string::npos)
+      return {expanded.substr(0, at), expanded.substr(of + 4) + " (to within " +
+                                          expanded.substr(at + 11, of - at - 11) + ")"};
   }
+  if (const auto are = expanded.find(" are within "); are != std::string::npos) {
+    const auto et = expanded.rfind(" and ", are);
+    const auto percent = expanded.find("% of each other", are);
+    if (et != std::string::npos && percent != std::string::npos)
+      return {expanded.substr(0, et), expanded.substr(et + 5, are - et - 5) + " (to within " +
+                                          expanded.substr(are + 12, percent - are - 12) + "%)"};
+  }
+  if (const auto at = expanded.find(" contains: "); at != std::string::npos)
+    return {expanded.substr(0, at), "a text containing " + expanded.substr(at + 11)};
+  // Comparisons: "lhs op rhs" on one line, or "lhs\nop\nrhs".
+  static const std::array<std::pair<std::string_view, std::string_view>, 6> words{
+      {{"==", ""},
+       {"!=", "anything but "},
+       {"<=", "at most "},
+       {">=", "at least "},
+       {"<", "less than "},
+       {">", "more than "}}};
+  for (const auto& [op, phrase] : words) {
+    for (const std::string& gap : {" " + std::string(op) + " ", "\n" + std::string(op) + "\n"}) {
+      const auto at = expanded.find(gap);
+      if (at != std::string::npos)
+        return {expanded.substr(0, at), std::string(phrase) + expanded.substr(at + gap.size())};
+    }
+  }
+  return {};
+}
+
+std::string raw_lines(const Catch::AssertionResult& result) {
   std::string file = result.getSourceInfo().file;
   file = file.substr(std::min(file.size(), file.rfind("tests/")));  // as the kit names it
-  std::string text =
-      file + ":" + std::to_string(result.getSourceInfo().line) + ": " + result.getExpression();
-  if (result.hasExpandedExpression()) text += "\nwith values: " + result.getExpandedExpression();
-  for (const Catch::MessageInfo& message : stats.infoMessages)
-    if (message.message != result.getMessage()) text += "\n" + message.message;
+  std::string text = "raw: " + file + ":" + std::to_string(result.getSourceInfo().line) + ": " +
+                     std::string(result.getTestMacroName()) + "(" + result.getExpression() + ")";
+  if (result.hasExpandedExpression())
+    text += "\nraw: with values: " + result.getExpandedExpression();
+  return text;
+}
+
+// The test's INFO lines (what it checks, and a recognised mistake) and its CAPTURE values.
+struct Context {
+  std::string checked, mistake, values;
+};
+
+Context context_of(const Catch::AssertionStats& stats) {
+  Context c;
+  for (const Catch::MessageInfo& m : stats.infoMessages) {
+    if (m.message.empty() || m.message == stats.assertionResult.getMessage()) continue;
+    if (m.macroName == "CAPTURE") {
+      std::string value = m.message;
+      if (const auto at = value.find(" := "); at != std::string::npos) value.replace(at, 4, " = ");
+      c.values += (c.values.empty() ? "" : ", ") + value;
+    } else if (m.message.rfind(mistake_prefix, 0) == 0) {
+      if (c.mistake.empty()) c.mistake = m.message;
+    } else {
+      c.checked += (c.checked.empty() ? "" : "\n") + m.message;
+    }
+  }
+  return c;
+}
+
+std::string explain(const Catch::AssertionStats& stats) {
+  const Catch::AssertionResult& result = stats.assertionResult;
+  const Context c = context_of(stats);
+  std::string text;
+  const auto add = [&text](std::string_view label, const std::string& value) {
+    if (!value.empty()) text += (text.empty() ? "" : "\n") + std::string(label) + value;
+  };
+  const std::string macro(result.getTestMacroName());
+  if (result.getResultType() == Catch::ResultWas::ThrewException) {
+    // A task not written yet needs no more than its message.
+    const std::string what = result.getMessage();
+    if (what.find("is not implemented yet") != std::string::npos) return what;
+    add("checked: ", c.checked);
+    if (macro.find("THROWS_AS") != std::string::npos) {
+      const std::string expression = result.getExpression();
+      const std::string type = expression.substr(expression.rfind(", ") + 2);
+      add("expected: ", "the exception " + type);
+      add("got: ", "another kind of exception: " + what);
+    } else {
+      add("got: ", "an exception the test did not expect: " + what);
+    }
+  } else if (result.getResultType() == Catch::ResultWas::DidntThrowException) {
+    add("checked: ", c.checked);
+    add("got: ", "no exception");
+    const std::string expression = result.getExpression();
+    add("expected: ", macro.find("THROWS_AS") != std::string::npos
+                          ? "the exception " + expression.substr(expression.rfind(", ") + 2)
+                          : "an exception");
+  } else if (result.getResultType() == Catch::ResultWas::ExplicitFailure) {
+    add("checked: ", c.checked);
+    add("", result.getMessage());  // the test's own words: got and expected
+  } else {
+    add("checked: ", c.checked);
+    const GotExpected values = split_expansion(result.getExpandedExpression());
+    if (!values.got.empty()) {
+      add("got:      ", values.got);
+      add("expected: ", values.expected);
+    } else if (c.mistake.empty()) {
+      add("got: ", "something else than the check asks for");
+    }
+  }
+  add("", c.mistake);
+  add("where: ", c.values);
+  add("", raw_lines(result));
   return text;
 }
 

@@ -413,7 +413,7 @@ class Grader::Pipeline {
       TestResult& t = b->result.tests[std::size_t(index)];
       const RunVerdict v = judge(o, secret, limits, limits_text_);
       t.passed = v.passed;
-      t.message = v.message;
+      t.message = g_.settings_.raw ? v.message : without_raw_lines(v.message);
       t.printed = o.output;
       t.printed_bytes = o.output_bytes;
       t.seconds = o.wall_seconds;
@@ -445,13 +445,25 @@ class Grader::Pipeline {
       const RunVerdict v = judge(o, secret, limits, limits_text_);
       if (!v.passed) {
         t.passed = false;
-        t.message =
-            "passes, but not with the sanitizers, which check every memory access: " + v.message;
+        t.message = "passes, but not with the sanitizers, which check every memory access: " +
+                    (g_.settings_.raw ? v.message : without_raw_lines(v.message));
         t.printed = o.output;
         t.printed_bytes = o.output_bytes;
+        if (!g_.settings_.raw) without_sanitizer_report(t);
       }
       settle(b);
     });
+  }
+
+  // The sanitizer's own report (its stack names the kit's tests and their lines) is for
+  // instructors: the message has already said what it found and where in the student's code.
+  static void without_sanitizer_report(TestResult& t) {
+    const std::string banner =
+        "=================================================================\n==";
+    const auto at = t.printed.find(banner);
+    if (at == std::string::npos) return;
+    t.printed.resize(at);
+    t.printed_bytes = std::min(t.printed_bytes, at);
   }
 
   void settle(const std::shared_ptr<TaskBuild>& b) {

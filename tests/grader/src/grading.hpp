@@ -26,6 +26,7 @@ struct Settings {
   std::size_t output_limit = 8u << 20;  ///< bytes: printing more stops the test
   std::vector<int> tasks{1, 2, 3, 4, 5};  ///< the tasks graded
   bool hidden = true;  ///< whether the hidden tests run too (a student's check: false)
+  bool raw = false;    ///< keep Catch2's own form of a failure (file, line, expression)
 };
 
 struct TestResult {

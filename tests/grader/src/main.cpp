@@ -272,6 +272,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_flag("--student", options.student,
                "a student's check: the feedback on the terminal; exit 1 unless every test passes");
+  app.add_flag("--raw", options.settings.raw,
+               "for instructors: show each failure's test file, line and expression as Catch2 "
+               "states them, after the student's wording");
   app.add_flag("--max-points", options.max_points,
                "print each task's maximum (the sum of its tests' points) and grade nothing");
   app.add_option("--kit", options.kit, "the kit.toml of the build to use")->capture_default_str();

@@ -5,6 +5,7 @@
 #include <seccomp.h>
 #include <signal.h>
 #include <sys/random.h>
+#include <algorithm>
 
 #include <cmath>
 #include <cstdlib>
@@ -175,6 +176,19 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
   if (message.find("std::bad_alloc") != std::string::npos && limits.address_space_mb > 0)
     message += "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) + " MB)";
   return {false, message};
+}
+
+std::string without_raw_lines(const std::string& message) {
+  std::string kept;
+  std::size_t start = 0;
+  while (start < message.size()) {
+    const std::size_t end = std::min(message.find('\n', start), message.size());
+    if (message.compare(start, 5, "raw: ") != 0)
+      kept.append(message, start, end - start).append("\n");
+    start = end + 1;
+  }
+  if (!kept.empty() && (message.empty() || message.back() != '\n')) kept.pop_back();
+  return kept;
 }
 
 }  // namespace springlab::grader

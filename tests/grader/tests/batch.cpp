@@ -44,6 +44,8 @@ struct Expectation {
   std::map<int, std::string> feedback;  // per task: a regex its feedback must match
   CaughtBy caught_by = CaughtBy::any;
   int task = 0;  // a mutant's task
+  // A mutant's "Expect:" lines: what its task's first failure must say (each one, word for word).
+  std::vector<std::string> first_failure;
 };
 
 const fs::path hidden_tests = kit / "tests" / "hidden";
@@ -102,7 +104,9 @@ Points parse_points(const std::string& text, const std::string& where) {
 }
 
 Expectation all(const std::string& name, const std::string& what, Points points) {
-  Expectation e{name, what, {}, {}};
+  Expectation e;
+  e.name = name;
+  e.what = what;
   for (int task = 1; task <= 5; ++task)
     e.points[task] = points;
   return e;
@@ -179,6 +183,14 @@ Expectation mutant(const fs::path& patch, CaughtBy caught_by) {
   e.points[task] = Points::less;
   e.caught_by = caught_by;
   e.task = task;
+  // The header (the lines before the diff) names the words its first failure must say.
+  std::istringstream header(text.substr(0, text.find("\n--- a/")));
+  for (std::string line; std::getline(header, line);)
+    if (line.rfind("Expect: ", 0) == 0) e.first_failure.push_back(line.substr(8));
+  INFO(
+      patch.filename().string() << " needs a line 'Expect: WORDS' in its header: words of the "
+                                   "first failure that name the mistake (tests/mutants/README.md)");
+  CHECK_FALSE(e.first_failure.empty());
   const fs::path target = submissions / e.name;
   fs::copy(kit / "solutions", target, fs::copy_options::recursive);
   const auto [status, output] = run({SPRINGLAB_PATCH, "--fuzz=0", "--silent", "-p1", "-d",
@@ -214,6 +226,24 @@ std::string section(const std::string& feedback, int task) {
   if (start == std::string::npos) return "";
   const auto end = feedback.find("==> ", start + heading.size());
   return feedback.substr(start, end == std::string::npos ? std::string::npos : end - start);
+}
+
+// The first failed test of a task's feedback: its "... FAIL" line and the lines of explanation
+// under it.
+std::string first_failure(const std::string& task_feedback) {
+  std::istringstream lines(task_feedback);
+  std::string block;
+  for (std::string line; std::getline(lines, line);) {
+    if (block.empty()) {
+      // "NAME ... FAIL", or "NAME ... FAIL (hidden test: ...)"
+      if (std::regex_search(line, std::regex(R"( \.\.\. FAIL( \(.*\))?$)"))) block = line;
+    } else if (line.rfind("        ", 0) == 0) {
+      block += "\n" + line;
+    } else {
+      break;
+    }
+  }
+  return block;
 }
 
 }  // namespace
@@ -308,11 +338,19 @@ TEST_CASE(
       if (e.caught_by == CaughtBy::public_tests) CHECK(public_failed > 0);
       if (e.caught_by == CaughtBy::hidden_only) CHECK((public_failed == 0 && hidden_failed > 0));
     }
+    for (const std::string& words : e.first_failure) {
+      const std::string first = first_failure(section(feedback, e.task));
+      INFO("the first failure must say \"" << words << "\":\n" << first);
+      CHECK(first.find(words) != std::string::npos);
+    }
     for (const auto& [task, pattern] : e.feedback) {
       INFO("task " << task << " feedback must match /" << pattern << "/:\n"
                    << section(feedback, task));
       CHECK(std::regex_search(section(feedback, task), std::regex(pattern)));
     }
+    // A teacher's words: no Catch2 expression and no path into the kit's tests/ (--raw shows
+    // them to instructors).
+    CHECK_FALSE(std::regex_search(feedback, std::regex(R"(with values:|tests/\S+\.cpp:\d+)")));
     CHECK(snapshot(submissions / e.name) == before[e.name]);
   }
 

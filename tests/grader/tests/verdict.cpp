@@ -138,3 +138,14 @@ TEST_CASE("Sanitizer reports become sentences naming the student's function and 
         "2147483647 + 1");
   CHECK(explain_sanitizer_report("nothing wrong here\n").empty());
 }
+
+TEST_CASE("A failure's Catch2 form (raw lines) is left out unless an instructor asks for it",
+          "[verdict]") {
+  const std::string message =
+      "checked: equation (1.1)\ngot:      7.8\nexpected: 6\nraw: tests/task1.cpp:40: CHECK(x)\n"
+      "raw: with values: 7.8 == 6";
+  CHECK(without_raw_lines(message) == "checked: equation (1.1)\ngot:      7.8\nexpected: 6");
+  CHECK(without_raw_lines("a\nraw: b\nc\n") == "a\nc\n");
+  CHECK(without_raw_lines("the code under test stopped") == "the code under test stopped");
+  CHECK(without_raw_lines("").empty());
+}
