@@ -69,22 +69,23 @@ std::string read_file(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
-std::string kit_signature(const Kit& kit, const std::vector<TestInfo>& tests) {
+// What task N's times depend on: its programs, its library parts and its tests' names.
+std::string task_signature(const Kit& kit, const std::vector<TestInfo>& tests, int task) {
   std::ostringstream s;
   const auto stamp = [&](const fs::path& path) {
     std::error_code error;
     s << path.string() << ' ' << fs::file_size(path, error) << ' '
       << fs::last_write_time(path, error).time_since_epoch().count() << '\n';
   };
-  for (int task = 1; task <= 5; ++task) {
-    stamp(kit.programs.at(task));
-    stamp(kit.sanitized_programs.at(task));
-    for (const fs::path& part : kit.library_parts.at(task))
-      stamp(part);
-  }
+  stamp(kit.programs.at(task));
+  stamp(kit.sanitized_programs.at(task));
+  for (const fs::path& part : kit.library_parts.at(task))
+    stamp(part);
   for (const TestInfo& test : tests)
-    s << test.name << '\n';
-  return s.str();
+    if (test.task == task) s << test.name << '\n';
+  std::ostringstream hex;
+  hex << std::hex << std::hash<std::string>{}(s.str());
+  return hex.str();
 }
 
 }  // namespace
@@ -160,7 +161,8 @@ Limits Grader::test_limits(const TestInfo& test, const Variant& variant) const {
   Limits limits;
   double reference = settings_.time_floor;
   if (const auto v = calibration_.find(variant.name); v != calibration_.end())
-    if (const auto t = v->second.find(test.name); t != v->second.end()) reference = t->second;
+    if (const auto t = v->second.find(test.name); t != v->second.end())
+      reference = t->second.seconds;
   limits.wall_seconds = std::max(settings_.time_floor, settings_.time_factor * reference);
   limits.cpu_seconds = limits.wall_seconds;
   // The sanitizers reserve terabytes of address space: their memory is watched instead.
@@ -528,27 +530,42 @@ std::vector<SubmissionResult> Grader::grade(
   return run(submissions, false, task_done, submission_done);
 }
 
+// The cache: a line "task N SIGNATURE" per task measured, "---", then "VARIANT SECONDS N NAME"
+// per test. A task is measured when first graded and again once its programs change; a task
+// not graded now keeps its lines as they are.
 void Grader::calibrate(const fs::path& cache) {
-  const std::string signature = kit_signature(kit_, tests_);
   // A student release has no solutions/ to time: it carries the times the instructor's build
   // measured (another machine's, but the limits are ten times as long and at least 2 s).
   const bool shipped = kit_.solutions.empty();
+  std::map<int, std::string> signatures;  // per task whose lines are kept
   {
     std::ifstream in(shipped ? kit_.calibration : cache);
-    std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-    const auto split = text.find("---\n");
-    if (split != std::string::npos && (shipped || text.substr(0, split) == signature)) {
-      std::istringstream lines(text.substr(split + 4));
-      std::string variant, line;
-      double seconds = 0;
-      while (lines >> variant >> seconds && std::getline(lines, line))
-        calibration_[variant][line.substr(1)] = seconds;
-      return;
+    std::string line;
+    while (std::getline(in, line) && line != "---") {
+      std::istringstream words(line);
+      std::string word, signature;
+      int task = 0;
+      if (words >> word >> task >> signature && word == "task") signatures[task] = signature;
     }
-    if (shipped) return;  // no times: every test gets the floor's ten times (src/grading.hpp)
+    std::string variant, name;
+    double seconds = 0;
+    int task = 0;
+    while (in >> variant >> seconds >> task && std::getline(in, name))
+      if (signatures.count(task) > 0) calibration_[variant][name.substr(1)] = {task, seconds};
   }
+  if (shipped) return;  // without times, every test gets the floor's ten times (grading.hpp)
+  std::vector<int> missing;
+  for (const int task : settings_.tasks) {
+    const std::string signature = task_signature(kit_, tests_, task);
+    if (signatures.count(task) > 0 && signatures[task] == signature) continue;
+    for (auto& [variant, times] : calibration_)
+      std::erase_if(times, [task](const auto& entry) { return entry.second.task == task; });
+    signatures[task] = signature;
+    missing.push_back(task);
+  }
+  if (missing.empty()) return;
   const Settings saved = settings_;
-  settings_.tasks = {1, 2, 3, 4, 5};
+  settings_.tasks = missing;
   settings_.hidden = true;  // one measurement serves a student's check and an instructor's grading
   settings_.work = saved.work / "reference";
   Submission reference = find_submission(kit_.solutions, kit_);
@@ -564,8 +581,8 @@ void Grader::calibrate(const fs::path& cache) {
         failures += "\n  task " + std::to_string(task) + ": " + t.test->name + ": " +
                     (result.problem.empty() ? t.message : result.problem);
       else {
-        calibration_["plain"][t.test->name] = t.seconds;
-        calibration_["sanitized"][t.test->name] = t.sanitized_seconds;
+        calibration_["plain"][t.test->name] = {task, t.seconds};
+        calibration_["sanitized"][t.test->name] = {task, t.sanitized_seconds};
       }
   if (!failures.empty())
     throw std::runtime_error(
@@ -576,10 +593,12 @@ void Grader::calibrate(const fs::path& cache) {
   const fs::path partial = cache.string() + "." + std::to_string(getpid());
   {
     std::ofstream out(partial);
-    out << signature << "---\n";
+    for (const auto& [task, signature] : signatures)
+      out << "task " << task << ' ' << signature << '\n';
+    out << "---\n";
     for (const auto& [name, variant] : calibration_)
-      for (const auto& [test, seconds] : variant)
-        out << name << ' ' << seconds << ' ' << test << '\n';
+      for (const auto& [test, time] : variant)
+        out << name << ' ' << time.seconds << ' ' << time.task << ' ' << test << '\n';
   }
   std::error_code error;
   fs::rename(partial, cache, error);

@@ -58,15 +58,20 @@ struct SubmissionResult {
   double max_points() const;
 };
 
-/// Each test's wall time with the reference code, s, per variant ("plain", "sanitized").
-using Calibration = std::map<std::string, std::map<std::string, double>>;
+/// A test's wall time with the reference code, and its task.
+struct ReferenceTime {
+  int task = 0;
+  double seconds = 0.0;  ///< s
+};
+/// Each test's time by name, per variant ("plain", "sanitized").
+using Calibration = std::map<std::string, std::map<std::string, ReferenceTime>>;
 
 class Grader {
  public:
   Grader(const Kit& kit, const std::vector<TestInfo>& tests, Settings settings);
 
-  /// Grades the kit's own solutions with generous limits and keeps each test's time, or reads
-  /// them from `cache` when the kit has not changed since. Throws std::runtime_error when a
+  /// Grades the kit's own solutions with generous limits and keeps each test's time, for the
+  /// tasks being graded whose times `cache` lacks or whose programs changed since. Throws std::runtime_error when a
   /// reference test fails: the kit is broken, and no submission could be graded fairly.
   void calibrate(const fs::path& cache);
 

@@ -137,9 +137,20 @@ int grade(Options options) {
   options.work =
       options.work.empty() ? options.out.parent_path() / "work" : absolute_folder(options.work);
   const Kit kit = read_kit(options.kit);
+  // The tasks graded, or all for --max-points: a student's check of task 1 may have built the
+  // programs of task 1 only (./lab test task1).
   std::string listing;
-  for (const auto& [task, program] : kit.programs)
+  for (const auto& [task, program] : kit.programs) {
+    if (!options.max_points &&
+        std::find(options.tasks.begin(), options.tasks.end(), task) == options.tasks.end())
+      continue;
+    if (!fs::exists(program))
+      throw UsageError(program.string() + " is not built: cmake --build " +
+                       options.kit.parent_path().parent_path().parent_path().string() +
+                       " --target springlab-grader-task" + std::to_string(task) +
+                       " (or springlab-grader, for every task)");
     listing += run_trusted({program.string(), "--list"});
+  }
   std::vector<TestInfo> tests = parse_test_list(listing);
   assign_points(tests, options.points.empty() ? kit.points : options.points);
   if (options.max_points) {  // for the GitHub Classroom workflow of a release (./lab release)

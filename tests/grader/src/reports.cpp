@@ -72,13 +72,19 @@ std::string without_colon(std::string line) {
   return line;
 }
 
-// After a task's count in the summary: not started (what to write first), or the first failure.
+// A task's line in the summary: all pass, not started (what to write first), or the count and
+// the first failure.
 std::string state_text(const TaskResult& r) {
   const auto failed =
       std::find_if(r.tests.begin(), r.tests.end(), [](const TestResult& t) { return !t.passed; });
-  if (failed == r.tests.end()) return "";
-  if (const std::string what = not_started(r); !what.empty()) return ": not started (" + what + ")";
-  return ": first failure: " + printable(failed->test->name);
+  const std::string points =
+      " (" + points_text(r.points()) + " of " + points_text(r.max_points()) + " points)";
+  if (failed == r.tests.end())
+    return (r.tests.size() == 1 ? "its 1 test passes"
+                                : "all " + std::to_string(r.tests.size()) + " tests pass") +
+           points;
+  if (const std::string what = not_started(r); !what.empty()) return "not started (" + what + ")";
+  return count_text(r) + "; first failure: " + printable(failed->test->name);
 }
 
 std::string xml(const std::string& text) {
@@ -178,10 +184,15 @@ std::string task_feedback(const SubmissionResult& result, int task, const Kit& k
   if (!r.warnings.empty())
     out << "  the compiler warns (the tests still run):\n"
         << indented(printable(r.warnings), "    ");
+  // A task not started: every test stops at the stub, so its message is said once, below.
+  const bool untouched = !not_started(r).empty();
   for (const TestResult& t : r.tests) {
-    out << "  " << t.test->name << " ... " << (t.passed ? "pass" : "FAIL")
+    out << "  " << t.test->name << " ... "
+        << (t.passed    ? "pass"
+            : untouched ? "not started"
+                        : "FAIL")
         << (t.test->hidden ? std::string(" ") + hidden_mark : "") << '\n';
-    if (!t.passed) out << indented(failure_text(t, printed_in_feedback), "        ");
+    if (!t.passed && !untouched) out << indented(failure_text(t, printed_in_feedback), "        ");
   }
   out << '\n'
       << count_text(r)
@@ -206,7 +217,7 @@ std::string summary_feedback(const SubmissionResult& result) {
       out << printable(without_colon(r.problem.substr(0, r.problem.find('\n')))) << " (0 of "
           << points_text(r.max_points()) << " points)\n";
     else
-      out << count_text(r) << state_text(r) << '\n';
+      out << state_text(r) << '\n';
   }
   return out.str();
 }

@@ -115,7 +115,7 @@ TEST_CASE("Feedback: one line per test, the failure explained, and a count in po
   CHECK_THAT(text, Catch::Contains("1 of 2 tests pass (2 of 3 points); fix the first FAIL"));
   CHECK_THAT(text, Catch::Contains("  does not compile:\n  spring_forces.cpp:3: error"));
   CHECK_THAT(text, Catch::Contains("==> Summary: 2 of 4.5 points\n  task 1: 1 of 2 tests pass "
-                                   "(2 of 3 points): first failure: Spring: two\n"));
+                                   "(2 of 3 points); first failure: Spring: two\n"));
   CHECK_THAT(text, Catch::Contains("  task 2: does not compile (0 of 1.5 points)"));
 }
 
@@ -151,7 +151,7 @@ TEST_CASE("results.json: a hidden test is shown after the due date, and its resu
   CHECK(json["score"] == 1.0);  // every test counts
   // The run's output, which Gradescope shows at once, counts the public tests only.
   const std::string output = json["output"].get<std::string>();
-  CHECK_THAT(output, Catch::Contains("==> Summary: 1 of 1 points\n  task 1: 1 of 1 tests pass"));
+  CHECK_THAT(output, Catch::Contains("==> Summary: 1 of 1 points\n  task 1: its 1 test passes"));
   CHECK_THAT(output, Catch::Contains("and 1 hidden test (3 points), shown after the due date"));
   CHECK_THAT(output, !Catch::Contains("secret") && !Catch::Contains("Hooke"));
 }
@@ -183,14 +183,22 @@ TEST_CASE("Summary: a task not started says what to write first; one that passes
   result.tasks[1].tests = {{&tests[0], false, stub, "", 0, 0.1, 0},
                            {&tests[1], false, stub + "\nmore", "", 0, 0.1, 0}};
   CHECK_THAT(summary_feedback(result),
-             Catch::Contains("  task 1: 0 of 2 tests pass (0 of 2 points): not started (write "
-                             "spring_force in tasks/task1_two_masses/spring_damper.cpp, handout "
-                             "section 1)\n"));
+             Catch::Contains("  task 1: not started (write spring_force in "
+                             "tasks/task1_two_masses/spring_damper.cpp, handout section 1)\n"));
+  // Its feedback says the stub's message once, not once per test.
+  Kit kit;
+  kit.task_files = {{1, {"task1_two_masses/spring_damper.cpp"}}};
+  const std::string text = feedback(result, kit);
+  CHECK_THAT(text,
+             Catch::Contains("  Spring: one ... not started\n  Spring: two ... not started\n"));
+  CHECK(text.find("is not implemented yet") == std::string::npos);
+  CHECK_THAT(text, Catch::Contains("not started yet: write spring_force in"));
   // Started: one test fails otherwise, so the first failure is named instead.
   result.tasks[1].tests[1].message = "got 0.5 N, expected 1 N";
   CHECK_THAT(summary_feedback(result),
-             Catch::EndsWith("(0 of 2 points): first failure: Spring: one\n"));
+             Catch::EndsWith("  task 1: 0 of 2 tests pass (0 of 2 points); first failure: Spring: "
+                             "one\n"));
   result.tasks[1].tests[0].passed = result.tasks[1].tests[1].passed = true;
   CHECK_THAT(summary_feedback(result),
-             Catch::EndsWith("  task 1: 2 of 2 tests pass (2 of 2 points)\n"));
+             Catch::EndsWith("  task 1: all 2 tests pass (2 of 2 points)\n"));
 }
