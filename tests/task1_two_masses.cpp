@@ -50,6 +50,7 @@ TEST_CASE("Spring: Hooke's magnitude and direction, stretched, compressed and ro
       {"the force is multiplied by the rest length l0: (1.1) is k (L - l0)", pull * rest}};
   for (const auto& usual : usual_suspects(pull, "the spring force (1.1)"))
     suspects.push_back(usual);
+  INFO("compared: the force on p along the spring towards q, N: k (L - l0)");
   INFO(recognise(f.dot(towards_q), suspects, 1e-9 * (1.0 + std::abs(pull))));
   CHECK_THAT(f.dot(towards_q), WithinRel(pull, 1e-12));
   // Hooke's force acts along the spring only.
@@ -122,6 +123,7 @@ TEST_CASE("Damper: opposes the relative velocity, and F_qp = -F_pq", "[task1][da
     // Along the relative velocity, against it, with size b·|v_p - v_q|; nothing across it.
     {
       const double power = -b * relative.squaredNorm();
+      INFO("compared: F_pq . (v_p - v_q), W: -b |v_p - v_q|^2");
       INFO(recognise(f.dot(relative), usual_suspects(power, "the damper force (1.2)"),
                      1e-9 * std::abs(power)));
       CHECK_THAT(f.dot(relative), WithinRel(power, 1e-12));
@@ -168,6 +170,7 @@ TEST_CASE("Explicit Euler: one step checked by hand", "[task1][euler][integrator
                                 " times: explicit Euler evaluates a(r0, v0) once, before "
                                 "anything moves (1.5)"
                           : std::string()));
+    INFO("compared: the acceleration's evaluations in one step");
     CHECK(evaluations == 1);
   }
   for (int i = 0; i < 3; ++i) {
@@ -181,6 +184,7 @@ TEST_CASE("Explicit Euler: one step checked by hand", "[task1][euler][integrator
                      r0.col(i) + h * v1},
                     {"the position did not move: (1.4) adds h v0", r0.col(i)}},
                    1e-12));
+    INFO("compared: the position r1 of particle i after the step, m");
     CHECK_THAT(Vec2(r.col(i)), IsNear(r1, 1e-14));
     INFO(recognise(Vec2(v.col(i)),
                    {{"the acceleration was evaluated after the positions moved: (1.5) uses "
@@ -188,6 +192,7 @@ TEST_CASE("Explicit Euler: one step checked by hand", "[task1][euler][integrator
                      v0.col(i) + h * (-4.0 * r1 - 0.5 * v0.col(i))},
                     {"the velocity did not change: (1.5) adds h a(r0, v0)", v0.col(i)}},
                    1e-12));
+    INFO("compared: the velocity v1 of particle i after the step, m/s");
     CHECK_THAT(Vec2(v.col(i)), IsNear(v1, 1e-14));
   }
 }

@@ -82,6 +82,7 @@ TEST_CASE("Structural springs: the count, each neighbour pair once, no self-spri
   {
     INFO("equation (2.2): rows*(cols-1) + cols*(rows-1) springs, right and down neighbours");
     const long expected = long(rows) * (cols - 1) + long(cols) * (rows - 1);
+    INFO("compared: the number of springs structural_springs returns");
     INFO(recognise_count(long(springs.size()), expected, "springs"));
     REQUIRE(long(springs.size()) == expected);
   }
@@ -146,6 +147,7 @@ TEST_CASE("Spring forces: the sum is minus the gradient of the total spring ener
   const Vectors f = summed_forces(scene.springs, r, still);
   const Vectors expected = energy_force(scene.springs, r);
   INFO(recognise(f, spring_sum_mistakes(scene.springs, r), 1e-6 * (1.0 + expected.norm())));
+  INFO("compared: the summed spring force on particle i, N");
   for (int i = 0; i < r.cols(); ++i) {
     CAPTURE(i);
     CHECK_THAT(Vec2(f.col(i)), IsNear(expected.col(i), 1e-6 * (1.0 + expected.col(i).norm())));
@@ -167,6 +169,7 @@ TEST_CASE("Damper forces: minus the gradient of the dissipation, so they never a
   double power = 0.0;
   for (int i = 0; i < r.cols(); ++i)
     power += f.col(i).dot(v.col(i));
+  INFO("compared: the dampers' power sum F_i . v_i, W: -2R");
   INFO(recognise(power, usual_suspects(-2.0 * dissipation, "the dampers' power"),
                  1e-9 * dissipation));
   CHECK(power <= 0.0);
@@ -192,6 +195,7 @@ TEST_CASE("Spring forces are added to what is already there", "[task2][spring]")
   accumulate_spring_forces(scene.springs, r, v, force);
   const Vectors alone = summed_forces(scene.springs, r, v);
   REQUIRE(alone.norm() > 0.1);
+  INFO("compared: how far `force` is from what was there plus the spring forces, N");
   INFO(recognise(force, {{"`force` was cleared (set to zero) first: add to what is there", alone}},
                  1e-12));
   CHECK((force - alone - Vectors::Constant(2, r.cols(), 0.5)).norm() <= 1e-12);

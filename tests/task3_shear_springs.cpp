@@ -28,6 +28,7 @@ TEST_CASE("Shear springs: the count, both diagonals of each cell once, no self-s
   CAPTURE(rows, cols);
   {
     const long expected = 2L * (rows - 1) * (cols - 1);
+    INFO("compared: the number of springs shear_springs returns");
     INFO((long(springs.size()) * 2 == expected
               ? "likely mistake: one diagonal per cell: (3.1) has both, [i,j]-[i+1,j+1] and "
                 "[i,j+1]-[i+1,j]"

@@ -1,9 +1,10 @@
 // The harness's Catch2 reporter: remembers, for the one test case run, its assertion counts and
 // its first failure in a teacher's words: what was checked (the test's INFO, with its equation),
-// what the code gave and what was expected, the mistake a test recognised, and the values the
-// test varied (CAPTURE). Catch2's own form (the test's file, line and expression) follows on
-// lines marked "raw: ", which the grader shows only to whoever asks (springlab-grade --raw). It
-// writes nothing: main.cpp sends the outcome to the grader as a record.
+// what is compared (an INFO "compared: ..."), what the code gave and what was expected, the
+// mistake a test recognised ("likely mistake: ..."), and the values the test varied (CAPTURE).
+// Catch2's own form (the test's file, line and expression) follows on lines marked "raw: ", which
+// the grader shows only to whoever asks (springlab-grade --raw). It writes nothing: main.cpp sends
+// the outcome to the grader as a record.
 #define CATCH_CONFIG_EXTERNAL_INTERFACES  // the reporter base classes
 #include "reporter.hpp"
 
@@ -77,7 +78,7 @@ std::string raw_lines(const Catch::AssertionResult& result) {
 
 // The test's INFO lines (what it checks, and a recognised mistake) and its CAPTURE values.
 struct Context {
-  std::string checked, mistake, values;
+  std::string checked, compared, mistake, values;
 };
 
 Context context_of(const Catch::AssertionStats& stats) {
@@ -88,6 +89,8 @@ Context context_of(const Catch::AssertionStats& stats) {
       std::string value = m.message;
       if (const auto at = value.find(" := "); at != std::string::npos) value.replace(at, 4, " = ");
       c.values += (c.values.empty() ? "" : ", ") + value;
+    } else if (m.message.rfind("compared: ", 0) == 0) {
+      c.compared = m.message;  // the innermost: what the failed check compares
     } else if (m.message.rfind(mistake_prefix, 0) == 0) {
       if (c.mistake.empty()) c.mistake = m.message;
     } else {
@@ -130,6 +133,7 @@ std::string explain(const Catch::AssertionStats& stats) {
     add("", result.getMessage());  // the test's own words: got and expected
   } else {
     add("checked: ", c.checked);
+    add("", c.compared);
     const GotExpected values = split_expansion(result.getExpandedExpression());
     if (!values.got.empty()) {
       add("got:      ", values.got);
