@@ -2,6 +2,8 @@
 // laws the forces must keep, then the step limit of the method.
 #include "springlab/divergence.hpp"
 
+#include "spring_matrices.hpp"
+
 #include "springlab/diagnostics.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/simulation.hpp"
@@ -250,6 +252,61 @@ bool beyond_critical(const Diagnosis& d) {
   return d.critical.source != LimitSource::not_computed && d.step > d.critical.step;
 }
 
+// Explicit Euler's limit on a scene too large for eigen-solves: c/ω² (equation (1.6) per mode) of
+// its fastest mode, found by power iteration on M^-1/2 K M^-1/2 from a checkerboard (the grid's
+// fastest motions alternate from particle to particle), its damping c the Rayleigh quotient of
+// M^-1/2 C M^-1/2. An estimate: the limit is the smallest c/ω² over all modes, and with damping
+// nearly proportional to the stiffness, as in the lab's families, the modes' values are close.
+CriticalStep explicit_euler_estimate(const Scene& scene, const Vectors& rest) {
+  const Particles& particles = scene.particles;
+  const int n = particles.size();
+  const Eigen::VectorXd scale = particles.mass.cwiseSqrt().cwiseInverse();
+  std::vector<Eigen::Matrix2d> blocks;
+  blocks.reserve(scene.springs.size());
+  for (const Spring& s : scene.springs)
+    blocks.push_back(
+        detail::stiffness_block(rest.col(s.p) - rest.col(s.q), s.k, s.rest_length, false));
+  const auto hold = [&](Vectors& x) {
+    for (int i = 0; i < n; ++i)
+      if (particles.pinned[std::size_t(i)]) x.col(i).setZero();
+  };
+  const auto stiffness = [&](const Vectors& x) {  // M^-1/2 K M^-1/2 x
+    const Vectors scaled = x * scale.asDiagonal();
+    Vectors y = Vectors::Zero(2, n);
+    for (std::size_t j = 0; j < scene.springs.size(); ++j) {
+      const Spring& s = scene.springs[j];
+      const Vec2 f = blocks[j] * (scaled.col(s.p) - scaled.col(s.q));
+      y.col(s.p) += f;
+      y.col(s.q) -= f;
+    }
+    y = y * scale.asDiagonal();
+    hold(y);
+    return y;
+  };
+  Vectors x(2, n);
+  const int cols = std::max(scene.parameters.cols, 1);
+  for (int i = 0; i < n; ++i)
+    x.col(i) = ((i / cols + i % cols) % 2 == 0 ? 1.0 : -1.0) * Vec2(1.0, 0.5);
+  hold(x);
+  const long iterations =
+      std::clamp(long(2e7 / double(std::max<std::size_t>(scene.springs.size(), 1))), 20L, 300L);
+  double w2 = 0.0;
+  for (long k = 0; k < iterations && x.norm() > 0.0; ++k) {
+    x /= x.norm();
+    Vectors y = stiffness(x);
+    w2 = (x.array() * y.array()).sum();
+    x = std::move(y);
+  }
+  if (!(w2 > 0.0) || x.norm() == 0.0) return {};
+  x /= x.norm();
+  const Vectors scaled = x * scale.asDiagonal();
+  double c = 0.0;  // xᵀ M^-1/2 C M^-1/2 x: each damper b |x_p - x_q|², the air's drag on each
+  for (const Spring& s : scene.springs)
+    c += s.b * (scaled.col(s.p) - scaled.col(s.q)).squaredNorm();
+  if (scene.parameters.wind.enabled) c += scene.parameters.wind.drag * scaled.squaredNorm();
+  return {c / w2, LimitSource::modal_estimate};
+}
+
 }  // namespace
 
 CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budget,
@@ -260,21 +317,25 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
   const auto free = std::count(particles.pinned.begin(), particles.pinned.end(), false);
   if (free == 0) return {infinity, LimitSource::no_limit};
   const Vectors rest = rest_positions(scene);
-  if (free <= budget.exact_particles) {
+  if (particles.size() <= budget.exact_particles) {  // as stability_report decides
     LinearModel model = linearise(scene.springs, rest, particles.mass, particles.pinned);
     if (p.wind.enabled) model.damping.diagonal().array() += p.wind.drag;
-    const CriticalStep critical = critical_step_of(model, p.integrator);
-    if (growth && p.integrator != "implicit-euler") {
-      if (p.integrator == "explicit-euler" || p.integrator == "rk4")
-        *growth = polynomial_growth_factor(deforming_eigenvalues(model), p.integrator, p.step);
-      else
-        *growth = step_growth_factor(model, p.integrator, p.step);
+    if (p.integrator == "explicit-euler" || p.integrator == "rk4") {  // one eigen-solve for both
+      const auto lambda = deforming_eigenvalues(model);
+      const double critical = polynomial_critical_step(lambda, p.integrator);
+      if (growth && p.step > critical)
+        *growth = polynomial_growth_factor(lambda, p.integrator, p.step);
+      return {critical, LimitSource::exact_formula};
     }
+    const CriticalStep critical = critical_step_of(model, p.integrator);
+    if (growth && p.step > critical.step && p.integrator != "implicit-euler")
+      *growth = step_growth_factor(model, p.integrator, p.step);
     return critical;
   }
   const double w = highest_frequency_bound(scene.springs, rest, particles.mass, particles.pinned);
   double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
   if (p.wind.enabled) c += p.wind.drag / particles.mass.minCoeff();
+  if (p.integrator == "explicit-euler") return explicit_euler_estimate(scene, rest);
   return estimated_critical_step(p.integrator, w, c);
 }
 
@@ -309,6 +370,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       (particles.mass.transpose() * particles.velocity.colwise().norm().transpose()).value();
   double momentum_broke = not_a_number, symmetry_broke = not_a_number;
   double energy_doubled = not_a_number, start_energy = 0.0, end_energy = 0.0, reference = 0.0;
+  double energy_time = start_time;  // s, when end_energy was measured
   Vec2 momentum_end = p0, deviation_end = Vec2::Zero();
   double asymmetry_end = 0.0, asymmetry_at_break = 0.0;
   const Mirror* broken_mirror = nullptr;
@@ -337,8 +399,8 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       const Vectors& r0 = particles.position;
       const int check_every = 8;
       for (long k = 0; k < budget_steps; ++k) {
+        ++replayed;  // counted when tried: the run's last step may be the one that fails
         replay.step();
-        ++replayed;
         const Particles& now = replay.particles();
         const double t = replay.time();
         end_time = t;
@@ -377,6 +439,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
         }
         if (k % check_every == check_every - 1 || k + 1 == budget_steps) {
           end_energy = replay.diagnostics().total();
+          energy_time = t;
           if (std::isnan(energy_doubled) && end_energy > 2 * reference) energy_doubled = t;
         }
       }
@@ -493,7 +556,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
             << " gives), so each step gives energy";
       if (!std::isnan(energy_doubled))
         words << ": the total energy rose from " << number(start_energy) << " J to "
-              << number(end_energy) << " J by t = " << end_time << " s";
+              << number(end_energy) << " J by t = " << energy_time << " s";
       words << ". Check the sign in "
             << (spring ? "F_pq = -k (|r_p - r_q| - l0) (r_p - r_q) / |r_p - r_q|, equation (1.1)"
                        : "F_pq = -b (v_p - v_q), equation (1.2)")
@@ -528,7 +591,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       d.amount = end_energy - start_energy;
       d.equation = "(2.3)";
       words << "Why: the total energy rose from " << number(start_energy) << " J to "
-            << number(end_energy) << " J by t = " << end_time << " s (twice its reference "
+            << number(end_energy) << " J by t = " << energy_time << " s (twice its reference "
             << number(reference) << " J at t = " << energy_doubled << " s), although " << step_words
             << ": springs and dampers cannot give energy at such a step, so some spring or damper "
                "force points the wrong way. Check the signs in (1.1) and (1.2) and how (2.3) adds "

@@ -248,6 +248,10 @@ void Session::advance(long steps) {
       primary_->step();
     } catch (const std::exception& error) {
       report(error, code_ == Code::student && reference_ ? "Your code: " : "");
+      // The reference, run beside it, has come this far: say so (the kit's diagnosis of the
+      // divergence never runs the reference).
+      if (reference_ && problem_.kind == Problem::Kind::diverged && reference_is_available())
+        problem_.detail += " The reference code, run beside yours, is still stable at this h.";
     }
     if (!reference_ || problem_.kind != Problem::Kind::none) continue;
     try {

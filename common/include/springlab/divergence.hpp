@@ -55,14 +55,15 @@ struct Diagnosis {
 struct DiagnosisBudget {
   int particles = 100000;       ///< larger scenes keep no start state and are not replayed
   double particle_steps = 3e7;  ///< the replay stops after this many particles × steps
-  int exact_particles = 64;     ///< eigen-solves (exact h_c) up to this many free particles
+  int exact_particles = exact_particles_max;  ///< eigen-solves (exact h_c) up to this size
 };
 
 /// The critical step of the scene's integrator (parameters.integrator), linearised about the
 /// grid at rest (as `springlab-run --stability` does) when the scene is a rows×cols grid, else
-/// about its particles' positions: exact up to budget.exact_particles free particles, else the
-/// estimates of stability_report. `growth` receives the growth factor per step at the scene's h
-/// when exact.
+/// about its particles' positions: exact up to budget.exact_particles particles (as
+/// stability_report decides), else its estimates from the bounds, and for explicit-euler c/ω²
+/// (equation (1.6)) of the fastest mode, found by power iteration. `growth` receives the growth
+/// factor per step at the scene's h when exact and h is beyond h_c.
 CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budget = {},
                                  double* growth = nullptr);
 
