@@ -85,6 +85,18 @@ void gravity_without_mass(const Eigen::VectorXd& mass, const Vec2& g, Vectors& f
     force.col(i) += g;
 }
 
+// The spring force (1.1) without a guard for coincident ends: 0/0 there.
+void unguarded_forces(const std::vector<Spring>& springs, const Vectors& r, const Vectors& v,
+                      Vectors& force) {
+  for (const Spring& s : springs) {
+    const Vec2 d = r.col(s.p) - r.col(s.q);
+    const Vec2 f =
+        -s.k * (d.norm() - s.rest_length) * d / d.norm() - s.b * (v.col(s.p) - v.col(s.q));
+    force.col(s.p) += f;
+    force.col(s.q) -= f;
+  }
+}
+
 Implementation with_mistake(void (*forces)(const std::vector<Spring>&, const Vectors&,
                                            const Vectors&, Vectors&)) {
   Implementation impl = implementation();
@@ -236,6 +248,26 @@ TEST_CASE("Diagnosis: gravity without the mass is named, with the momentum gravi
   CHECK_THAT(what, Contains("(" + number(expected.x()) + ", " + number(expected.y()) +
                             ") kg*m/s by t = "));
   CHECK_THAT(what, !Contains("times the critical step"));
+}
+
+TEST_CASE("Diagnosis: forces that are not finite at the start name the spring whose ends coincide",
+          "[diagnosis]") {
+  const Implementation impl = with_mistake(unguarded_forces);
+  Scene scene = build_scene(task_scene(2), impl);
+  scene.particles.position.col(1) = scene.particles.position.col(0);  // on top of particle 0
+  int coincident = -1;
+  for (std::size_t s = 0; s < scene.springs.size() && coincident < 0; ++s)
+    if (scene.springs[s].p + scene.springs[s].q == 1) coincident = int(s);
+  REQUIRE(coincident >= 0);
+  Simulation sim(std::move(scene), impl);
+  const auto error = run_to_divergence(sim, 10);
+  REQUIRE(error);
+  const std::string what = error->what();
+  CAPTURE(what);
+  CHECK(error->time() == sim.parameters().step);  // the first step
+  CHECK_THAT(what, Contains("not finite numbers, before any step") && Contains("(1.1)"));
+  CHECK_THAT(what, Contains("Spring " + std::to_string(coincident) +
+                            " joins particles 0 and 1, which start at the same place"));
 }
 
 TEST_CASE("Diagnosis: a replay is deterministic and leaves the run's report as it was",

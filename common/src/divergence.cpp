@@ -2,13 +2,12 @@
 // laws the forces must keep, then the step limit of the method.
 #include "springlab/divergence.hpp"
 
-#include "spring_matrices.hpp"
-
 #include "springlab/diagnostics.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/simulation.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <climits>
 #include <cmath>
 #include <iomanip>
@@ -216,14 +215,23 @@ std::string spring_list_equations(const SceneParameters& p) {
 }
 
 // "h = 0.01 s is 2 times the critical step 0.005 s of explicit Euler on this scene" and the like.
-std::string step_comparison(const Diagnosis& d, std::string_view integrator, int particles) {
+std::string step_comparison(const Diagnosis& d, const Scene& scene) {
+  const std::string_view integrator = scene.parameters.integrator;
+  const int particles = scene.particles.size();
   const std::string method = method_name(integrator);
   const CriticalStep& c = d.critical;
   std::ostringstream out;
   out << "h = " << d.step << " s";
   if (c.source == LimitSource::not_computed) {
     out << ": the critical step of " << method << " is not computed for a scene of " << particles
-        << " particles";
+        << " particles (springlab-run --stability computes it up to " << exact_particles_max << ")";
+    double guide = infinity;  // the smallest b/k: explicit Euler's limit for one spring (1.6)
+    for (const Spring& s : scene.springs)
+      if (s.k > 0) guide = std::min(guide, s.b / s.k);
+    if (integrator == "explicit-euler" && std::isfinite(guide))
+      out << "; as a guide, for one spring it is b/k, equation (1.6), and the smallest b/k of "
+             "these springs is "
+          << number(guide) << " s, which h is " << (d.step > guide ? "beyond" : "below");
     return out.str();
   }
   if (c.source == LimitSource::no_limit || std::isinf(c.step)) {
@@ -250,61 +258,6 @@ std::string step_comparison(const Diagnosis& d, std::string_view integrator, int
 
 bool beyond_critical(const Diagnosis& d) {
   return d.critical.source != LimitSource::not_computed && d.step > d.critical.step;
-}
-
-// Explicit Euler's limit on a scene too large for eigen-solves: c/ω² (equation (1.6) per mode) of
-// its fastest mode, found by power iteration on M^-1/2 K M^-1/2 from a checkerboard (the grid's
-// fastest motions alternate from particle to particle), its damping c the Rayleigh quotient of
-// M^-1/2 C M^-1/2. An estimate: the limit is the smallest c/ω² over all modes, and with damping
-// nearly proportional to the stiffness, as in the lab's families, the modes' values are close.
-CriticalStep explicit_euler_estimate(const Scene& scene, const Vectors& rest) {
-  const Particles& particles = scene.particles;
-  const int n = particles.size();
-  const Eigen::VectorXd scale = particles.mass.cwiseSqrt().cwiseInverse();
-  std::vector<Eigen::Matrix2d> blocks;
-  blocks.reserve(scene.springs.size());
-  for (const Spring& s : scene.springs)
-    blocks.push_back(
-        detail::stiffness_block(rest.col(s.p) - rest.col(s.q), s.k, s.rest_length, false));
-  const auto hold = [&](Vectors& x) {
-    for (int i = 0; i < n; ++i)
-      if (particles.pinned[std::size_t(i)]) x.col(i).setZero();
-  };
-  const auto stiffness = [&](const Vectors& x) {  // M^-1/2 K M^-1/2 x
-    const Vectors scaled = x * scale.asDiagonal();
-    Vectors y = Vectors::Zero(2, n);
-    for (std::size_t j = 0; j < scene.springs.size(); ++j) {
-      const Spring& s = scene.springs[j];
-      const Vec2 f = blocks[j] * (scaled.col(s.p) - scaled.col(s.q));
-      y.col(s.p) += f;
-      y.col(s.q) -= f;
-    }
-    y = y * scale.asDiagonal();
-    hold(y);
-    return y;
-  };
-  Vectors x(2, n);
-  const int cols = std::max(scene.parameters.cols, 1);
-  for (int i = 0; i < n; ++i)
-    x.col(i) = ((i / cols + i % cols) % 2 == 0 ? 1.0 : -1.0) * Vec2(1.0, 0.5);
-  hold(x);
-  const long iterations =
-      std::clamp(long(2e7 / double(std::max<std::size_t>(scene.springs.size(), 1))), 20L, 300L);
-  double w2 = 0.0;
-  for (long k = 0; k < iterations && x.norm() > 0.0; ++k) {
-    x /= x.norm();
-    Vectors y = stiffness(x);
-    w2 = (x.array() * y.array()).sum();
-    x = std::move(y);
-  }
-  if (!(w2 > 0.0) || x.norm() == 0.0) return {};
-  x /= x.norm();
-  const Vectors scaled = x * scale.asDiagonal();
-  double c = 0.0;  // xᵀ M^-1/2 C M^-1/2 x: each damper b |x_p - x_q|², the air's drag on each
-  for (const Spring& s : scene.springs)
-    c += s.b * (scaled.col(s.p) - scaled.col(s.q)).squaredNorm();
-  if (scene.parameters.wind.enabled) c += scene.parameters.wind.drag * scaled.squaredNorm();
-  return {c / w2, LimitSource::modal_estimate};
 }
 
 }  // namespace
@@ -335,7 +288,6 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
   const double w = highest_frequency_bound(scene.springs, rest, particles.mass, particles.pinned);
   double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
   if (p.wind.enabled) c += p.wind.drag / particles.mass.minCoeff();
-  if (p.integrator == "explicit-euler") return explicit_euler_estimate(scene, rest);
   return estimated_critical_step(p.integrator, w, c);
 }
 
@@ -453,7 +405,22 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
 
   std::ostringstream words;
   const SignFit::Result signs = fit.solve();
-  const std::string step_words = step_comparison(d, p.integrator, n);
+  // What the replay could check on this scene, in words.
+  std::string kept;
+  if (replayed > 0) {
+    std::vector<std::string> laws;
+    if (free_of_outside) laws.push_back("the total momentum, (2.4)");
+    if (gravity_only) laws.push_back("the momentum gravity gives, (5.2)");
+    if (!mirrors.empty()) laws.push_back("the mirror symmetry of the start");
+    if (fit.samples > 0)
+      laws.push_back("the directions of the spring and damper forces, (1.1) and (1.2)");
+    for (std::size_t i = 0; i < laws.size(); ++i)
+      kept += (i == 0 ? "" : i + 1 == laws.size() ? " and " : ", ") + laws[i];
+  }
+  const std::string kept_words = kept.empty()
+                                     ? "the kit could check no law of the forces here"
+                                     : "the forces kept what the kit checks (" + kept + ")";
+  const std::string step_words = step_comparison(d, start);
   // After a broken law: whether h is to blame as well.
   const auto about_h = [&] {
     if (beyond_critical(d))
@@ -568,10 +535,11 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     d.time = start_time;
     d.amount = d.critical.step > 0 ? d.step / d.critical.step : infinity;
     words << "Why: " << step_words << ". ";
-    if (d.replayed_all)
-      words << "The forces kept the laws the kit checks (" << (free_of_outside ? "momentum, " : "")
-            << (gravity_only ? "momentum under gravity, " : "")
-            << (mirrors.empty() ? "" : "mirror symmetry, ") << "the signs of (1.1) and (1.2)). ";
+    if (!kept.empty()) {
+      std::string sentence = kept_words + ". ";
+      sentence[0] = char(std::toupper(sentence[0]));
+      words << sentence;
+    }
     if (d.critical.step > 0)
       words << "Make h smaller than " << number(d.critical.step)
             << " s, or choose an integrator with a larger critical step (springlab-run "
@@ -583,9 +551,14 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     d.law = BrokenLaw::none;
     words << "Why: not replayed, the scene's " << n << " particles are more than the "
           << budget.particles << " the diagnosis replays; " << step_words << ".";
+  } else if (d.critical.source == LimitSource::not_computed) {
+    d.law = BrokenLaw::none;
+    words << "Why: " << kept_words << "; " << step_words
+          << ". If h is beyond the critical step, make h smaller or choose an integrator with a "
+             "larger one; if not, look for a spring or damper force that points the wrong way, "
+             "(1.1) and (1.2).";
   } else {
-    const bool below = d.critical.source != LimitSource::not_computed;
-    if (!std::isnan(energy_doubled) && below) {
+    if (!std::isnan(energy_doubled)) {
       d.law = BrokenLaw::energy;
       d.time = energy_doubled;
       d.amount = end_energy - start_energy;
@@ -599,7 +572,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     } else {
       d.law = BrokenLaw::step_function;
       d.time = start_time;
-      words << "Why: the forces kept the laws the kit checks, and " << step_words << ". ";
+      words << "Why: " << kept_words << "; " << step_words << ". ";
       if (impl.student_task == 1 && p.integrator == "explicit-euler")
         words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
                  "from the values at the start of the step.";
