@@ -5,6 +5,7 @@
 // messages are computed here from the run and from stability.hpp.
 #include "lab_testing.hpp"
 #include "springlab/diagnostics.hpp"
+#include "springlab/divergence.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/simulation.hpp"
 #include "springlab/stability.hpp"
@@ -244,7 +245,7 @@ TEST_CASE("Diagnosis: gravity without the mass is named, with the momentum gravi
   CAPTURE(what);
   const double t = error->time();
   const Vec2 expected = t * sim.particles().mass.sum() * p.gravity.acceleration;
-  CHECK_THAT(what, Contains("(5.2)") && Contains("without its mass"));
+  CHECK_THAT(what, Contains("(5.2)") && Contains("that is g without the mass"));
   CHECK_THAT(what, Contains("(" + number(expected.x()) + ", " + number(expected.y()) +
                             ") kg*m/s by t = "));
   CHECK_THAT(what, !Contains("times the critical step"));
@@ -292,4 +293,42 @@ TEST_CASE("Diagnosis: a replay is deterministic and leaves the run's report as i
   REQUIRE(three);
   CHECK(three->time() == one->time());
   CHECK_THAT(std::string(three->what()), !Contains("Why:"));
+}
+
+TEST_CASE(
+    "Diagnosis: the pure function gives the law, its time, amount and equation, and keeps "
+    "to its budget",
+    "[diagnosis]") {
+  SceneParameters p = task_scene(2);
+  p.step = 0.8 * critical_step_at_rest(p);
+  const Implementation impl = with_mistake(same_sign_on_both_ends);
+  const Scene start = build_scene(p, impl);
+  Simulation sim(Scene(start), impl);
+  REQUIRE(run_to_divergence(sim, 100000));
+  const long steps = sim.steps_taken();
+
+  const Diagnosis d = diagnose_divergence(start, impl, 0.0, steps);
+  CHECK(d.law == BrokenLaw::momentum);
+  CHECK(d.equation == "(2.4)");
+  CHECK(d.replayed_all);
+  CHECK_THAT(d.replayed, WithinRel(sim.time(), 1e-12));
+  // The momentum at the end of the replay is the run's, bit for bit: the same code, the same
+  // inputs. It first changed in the first step (every spring pushes both ends the same way).
+  CHECK(d.amount == sim.diagnostics().momentum.norm());
+  CHECK(d.time == p.step);
+  CHECK_THAT(d.critical.step, WithinRel(critical_step_at_rest(p), 1e-12));
+
+  DiagnosisBudget small;
+  small.particle_steps = 4.0 * 10;  // ten steps of the 4 particles
+  const Diagnosis partial = diagnose_divergence(start, impl, 0.0, steps, small);
+  CHECK(partial.law == BrokenLaw::momentum);
+  CHECK_FALSE(partial.replayed_all);
+  CHECK_THAT(partial.replayed, WithinRel(10 * p.step, 1e-12));
+  CHECK_THAT(partial.words, Contains("watched the first"));
+
+  small.particles = 3;  // fewer than the scene's 4: no replay at all
+  const Diagnosis none = diagnose_divergence(start, impl, 0.0, steps, small);
+  CHECK(none.law == BrokenLaw::none);
+  CHECK(none.replayed == 0.0);
+  CHECK_THAT(none.words, Contains("not replayed") && Contains("4 particles"));
 }

@@ -21,8 +21,8 @@ namespace detail {
 // The two things a replay needs of a Simulation that no one else should use.
 struct ReplayAccess {
   static void start_at(Simulation& sim, double time) { sim.start_time_ = time; }
-  static void watch_spring_forces(Simulation& sim, Simulation::SpringForceWatch watch) {
-    sim.spring_force_watch_ = std::move(watch);
+  static void watch_forces(Simulation& sim, Simulation::ForceWatch watch) {
+    sim.force_watch_ = std::move(watch);
   }
 };
 
@@ -321,6 +321,9 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
   double momentum_scale =
       (particles.mass.transpose() * particles.velocity.colwise().norm().transpose()).value();
   double momentum_broke = not_a_number, symmetry_broke = not_a_number;
+  double gravity_wrong = not_a_number;  // s, when add_gravity first added other than m_i g
+  int gravity_particle = -1;
+  Vec2 gravity_added = Vec2::Zero(), gravity_spring = Vec2::Zero();  // N
   double energy_doubled = not_a_number, start_energy = 0.0, end_energy = 0.0, reference = 0.0;
   double energy_time = start_time;  // s, when end_energy was measured
   Vec2 momentum_end = p0, deviation_end = Vec2::Zero();
@@ -339,8 +342,26 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       detail::ReplayAccess::start_at(replay, start_time);
       Vectors kit_spring, kit_damper;
       long evaluations = 0;
-      detail::ReplayAccess::watch_spring_forces(
-          replay, [&](const Vectors& r, const Vectors& v, const Vectors& f) {
+      Vectors spring_forces;
+      detail::ReplayAccess::watch_forces(
+          replay, [&](int stage, const Vectors& r, const Vectors& v, const Vectors& f) {
+            if (stage == 1) {  // what add_gravity added, against m_i g (5.2)
+              if (!std::isnan(gravity_wrong) || spring_forces.cols() != f.cols()) return;
+              const Vectors added = f - spring_forces;
+              for (Eigen::Index i = 0; i < f.cols(); ++i) {
+                const Vec2 expected = particles.mass[i] * g;
+                const Vec2 error = added.col(i) - expected;
+                if (!(error.norm() <= 1e-9 * (expected.norm() + spring_forces.col(i).norm()))) {
+                  gravity_wrong = replay.time();
+                  gravity_particle = int(i);
+                  gravity_added = added.col(i);
+                  gravity_spring = spring_forces.col(i);
+                  break;
+                }
+              }
+              return;
+            }
+            spring_forces = f;
             if (++evaluations == 1) start_finite = f.allFinite();
             if (fit.samples >= 400 || !f.allFinite() || !r.allFinite() || !v.allFinite()) return;
             kit_forces(start.springs, r, v, kit_spring, kit_damper);
@@ -464,27 +485,57 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
              "Add F_pq to particle p and subtract it from particle q, equation (2.4): F_qp = "
              "-F_pq."
           << about_h();
-  } else if (!std::isnan(momentum_broke) && gravity_only) {
-    d.law = BrokenLaw::gravity;
+  } else if (!std::isnan(momentum_broke) && gravity_only && std::isnan(gravity_wrong)) {
+    // add_gravity added m_i g to every particle: the springs changed the momentum.
+    d.law = BrokenLaw::momentum;
     d.time = momentum_broke;
     d.amount = deviation_end.norm();
-    d.equation = "(5.2)";
-    const double t = end_time - start_time;
-    const Vec2 expected = t * total_mass * g;
-    const Vec2 actual = momentum_end - p0;
-    const double share = actual.dot(g) / std::max(expected.dot(g), 1e-300);
+    d.equation = "(2.4)";
     words << "Why: gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
-             "total mass times g, "
-          << vector_text(expected) << " kg*m/s by t = " << end_time << " s, but it changed by "
-          << vector_text(actual) << " kg*m/s (" << number(share)
-          << " times that; it first differed at t = " << momentum_broke << " s). ";
-    const double per_unit_mass = double(n) / total_mass;
-    if (std::abs(share - per_unit_mass) < 0.05 * per_unit_mass && std::abs(per_unit_mass - 1) > 0.1)
-      words << "That is as if each particle's gravity were g without its mass. ";
-    else if (std::abs(share + 1) < 0.05)
-      words << "That is gravity pointing the wrong way. ";
+             "total mass times g, but by t = "
+          << end_time << " s it had changed by " << vector_text(deviation_end)
+          << " kg*m/s more than that (first at t = " << momentum_broke
+          << " s), and gravity was added right (m_i g, equation (5.2)): some spring pushes both "
+             "of its ends the same way, or only one of them. Add F_pq to particle p and subtract "
+             "it from particle q, equation (2.4): F_qp = -F_pq."
+          << about_h();
+  } else if ((!std::isnan(momentum_broke) && gravity_only) || !std::isnan(gravity_wrong)) {
+    d.law = BrokenLaw::gravity;
+    d.equation = "(5.2)";
+    words << "Why: ";
+    if (!std::isnan(momentum_broke) && gravity_only) {
+      d.time = momentum_broke;
+      d.amount = deviation_end.norm();
+      const double t = end_time - start_time;
+      const Vec2 expected = t * total_mass * g;
+      const Vec2 actual = momentum_end - p0;
+      const double share = actual.dot(g) / std::max(expected.dot(g), 1e-300);
+      words << "gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
+               "total mass times g, "
+            << vector_text(expected) << " kg*m/s by t = " << end_time << " s, but it changed by "
+            << vector_text(actual) << " kg*m/s (" << number(share)
+            << " times that; it first differed at t = " << momentum_broke << " s). ";
+    }
+    if (!std::isnan(gravity_wrong)) {
+      if (std::isnan(d.time)) d.time = gravity_wrong;
+      const int i = gravity_particle;
+      const Vec2 expected = particles.mass[i] * g;
+      if (d.amount == 0.0) d.amount = (gravity_added - expected).norm();
+      words << "At t = " << gravity_wrong << " s add_gravity changed the force on particle " << i
+            << " by " << vector_text(gravity_added)
+            << " N, but its gravity is m_i g = " << vector_text(expected) << " N ("
+            << number(particles.mass[i]) << " kg times g)";
+      if ((gravity_added - g).norm() <= 1e-9 * g.norm() && std::abs(particles.mass[i] - 1) > 1e-9)
+        words << ": that is g without the mass";
+      else if ((gravity_added + expected).norm() <= 1e-9 * expected.norm())
+        words << ": that is gravity pointing the wrong way";
+      else if ((gravity_added + gravity_spring - expected).norm() <=
+               1e-9 * (expected.norm() + gravity_spring.norm()))
+        words << ": the force was set to m_i g, and the spring forces already in it were lost";
+      words << ". ";
+    }
     words << "Gravity on particle i is m_i g, equation (5.2): F_i += m_i g, added to the forces "
-             "already there (and every spring force must still obey (2.4), F_qp = -F_pq)."
+             "already there."
           << about_h();
   } else if (!std::isnan(symmetry_broke)) {
     d.law = BrokenLaw::symmetry;
@@ -585,6 +636,10 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
   }
   if (budget_steps > 0 && !d.replayed_all && replayed < steps && d.law != BrokenLaw::start_forces)
     words << " (The diagnosis watched the first " << d.replayed << " s of the run only.)";
+  if (budget_steps == 0 && n > budget.particles && d.law != BrokenLaw::none)
+    words << " (The run was not replayed: its " << n << " particles are more than the "
+          << budget.particles << " the diagnosis replays, so the laws of the forces were not "
+          << "checked.)";
   d.words = words.str();
   return d;
 }

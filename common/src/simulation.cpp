@@ -69,8 +69,11 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   const Particles& particles = scene_.particles;
   force_.setZero(2, r.cols());
   impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
-  if (spring_force_watch_) spring_force_watch_(r, v, force_);
-  if (p.gravity.enabled) impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
+  if (force_watch_) force_watch_(0, r, v, force_);
+  if (p.gravity.enabled) {
+    impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
+    if (force_watch_) force_watch_(1, r, v, force_);
+  }
   // The wind is sampled at the start of the step: its gusts change over seconds, not steps.
   if (wind_) {
     wind_->begin_pass();
@@ -104,7 +107,8 @@ void Simulation::step() {
     if (particles.velocity.allFinite())
       particles.velocity.colwise().squaredNorm().maxCoeff(&fastest);
     std::string why = failure.what();
-    if (const std::string words = diagnosis(); !words.empty()) why += ". " + words;
+    if (const std::string words = diagnosis(); !words.empty())
+      why += (why.ends_with('.') ? " " : ". ") + words;
     throw DivergenceError(time(), int(fastest), "the " + std::string(integrator_->name()) + " step",
                           why);
   }

@@ -91,8 +91,9 @@ class Simulation {
 
  private:
   friend struct detail::ReplayAccess;
-  using SpringForceWatch =
-      std::function<void(const Vectors& r, const Vectors& v, const Vectors& spring_force)>;
+  /// What a replay sees of the forces: after the springs (stage 0) and after gravity (stage 1).
+  using ForceWatch =
+      std::function<void(int stage, const Vectors& r, const Vectors& v, const Vectors& force)>;
 
   void check_divergence(bool check_energy) const;
   void check_index(int i) const;
@@ -119,7 +120,7 @@ class Simulation {
   std::optional<Particles> stretch_start_;  // the state a diagnosis replays from (small scenes)
   double stretch_time_ = 0.0;               // s, its time
   long stretch_steps_ = 0;                  // steps since then
-  SpringForceWatch spring_force_watch_;     // a replay's look at the spring forces
+  ForceWatch force_watch_;                  // a replay's look at the forces
 };
 
 }  // namespace springlab
