@@ -299,7 +299,6 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
   Diagnosis d;
   d.step = p.step;
   d.critical = scene_critical_step(start, budget, &d.growth);
-  const std::string method = method_name(p.integrator);
 
   // What the replay watches.
   const bool pinned =

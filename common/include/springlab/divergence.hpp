@@ -4,6 +4,7 @@
 // step what the student's forces must keep:
 //   - the total momentum Σ m_i v_i, unchanged when no gravity, wind, push or pin acts (Newton's
 //     third law, equation (2.4)), and changed by exactly t·Σ m_i·g by gravity alone (5.2);
+//   - what add_gravity adds to each particle's force: m_i g (5.2), with pins and wind too;
 //   - the mirror image of a mirror-symmetric start (left-right or up-down about the grid's centre
 //     line) stays its mirror image (the spring lists (2.1), (2.2), (3.1), (5.1));
 //   - finite forces at the start state (a spring whose ends coincide, equation (1.1));
