@@ -217,6 +217,17 @@ double polynomial_growth_factor(const std::vector<std::complex<double>>& lambda,
   return growth;
 }
 
+CriticalStep estimated_critical_step(std::string_view integrator, double frequency_bound,
+                                     double damping_bound) {
+  const double w = frequency_bound, c = damping_bound;
+  const auto estimate = [](double h) { return CriticalStep{h, LimitSource::modal_estimate}; };
+  if (integrator == "symplectic-euler") return estimate(symplectic_euler_mode_limit(w * w, c));
+  if (integrator == "verlet" || integrator == "velocity-verlet") return estimate(2.0 / w);
+  if (integrator == "rk4") return estimate(2.0 * std::sqrt(2.0) / w);
+  if (integrator == "implicit-euler") return {infinity, LimitSource::no_limit};
+  return {};  // explicit-euler: its limit hangs on each mode's damping ratio
+}
+
 double critical_step(const LinearModel& model, std::string_view integrator) {
   return critical_step_of(model, integrator).step;
 }
@@ -237,20 +248,11 @@ StabilityReport stability_report(const SceneParameters& p, const Implementation&
       report.limits.push_back({name, critical_step_of(model, name)});
     return report;
   }
-  // Too large for eigen-solves: lower estimates from the bounds. ω ≤ ω_bound and c ≤ c_bound
-  // for every mode, and each per-mode limit falls as ω and c grow.
-  const double w = report.frequency_bound;
+  // Too large for eigen-solves: lower estimates from the bounds.
   double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
   if (p.wind.enabled) c += p.wind.drag / particles.mass.minCoeff();  // the drag to the air
-  const auto estimate = [](double h) { return CriticalStep{h, LimitSource::modal_estimate}; };
-  for (const std::string& name : integrator_names()) {
-    CriticalStep limit;  // explicit-euler: its limit hangs on each mode's damping ratio
-    if (name == "symplectic-euler") limit = estimate(symplectic_euler_mode_limit(w * w, c));
-    if (name == "verlet" || name == "velocity-verlet") limit = estimate(2.0 / w);
-    if (name == "rk4") limit = estimate(2.0 * std::sqrt(2.0) / w);
-    if (name == "implicit-euler") limit = {infinity, LimitSource::no_limit};
-    report.limits.push_back({name, limit});
-  }
+  for (const std::string& name : integrator_names())
+    report.limits.push_back({name, estimated_critical_step(name, report.frequency_bound, c)});
   return report;
 }
 

@@ -1,5 +1,6 @@
 #include "springlab/simulation.hpp"
 
+#include "springlab/divergence.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/selection.hpp"
 
@@ -58,6 +59,7 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
   const double floor = 0.5 * particles.mass.sum() * p.spacing * p.spacing;
   reference_energy_ = std::max({start.total(), moderate_energy(scene_.springs), floor}) +
                       external_energy(particles, p, int(pushed_.size()));
+  restart_stretch();
   check_divergence(true);
 }
 
@@ -67,7 +69,11 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   const Particles& particles = scene_.particles;
   force_.setZero(2, r.cols());
   impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
-  if (p.gravity.enabled) impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
+  if (force_watch_) force_watch_(0, r, v, force_);
+  if (p.gravity.enabled) {
+    impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
+    if (force_watch_) force_watch_(1, r, v, force_);
+  }
   // The wind is sampled at the start of the step: its gusts change over seconds, not steps.
   if (wind_) {
     wind_->begin_pass();
@@ -93,14 +99,18 @@ void Simulation::step() {
     const Model model{acceleration_function_, scene_.springs, particles.mass, particles.pinned};
     integrator_->step(model, scene_.parameters.step, particles.position, particles.velocity);
     ++steps_;
+    ++stretch_steps_;
     check_divergence(steps_ % limits_.energy_check_interval == 0);
   } catch (const StepFailed& failure) {
     // Name the fastest particle: where a step that cannot settle is most likely to go wrong.
     Eigen::Index fastest = 0;
     if (particles.velocity.allFinite())
       particles.velocity.colwise().squaredNorm().maxCoeff(&fastest);
+    std::string why = failure.what();
+    if (const std::string words = diagnosis(); !words.empty())
+      why += (why.ends_with('.') ? " " : ". ") + words;
     throw DivergenceError(time(), int(fastest), "the " + std::string(integrator_->name()) + " step",
-                          failure.what());
+                          why);
   }
 }
 
@@ -126,6 +136,7 @@ void Simulation::set_particle(int i, const Vec2& position, const Vec2& velocity)
   particles.position.col(i) = position;
   particles.velocity.col(i) = particles.pinned[i] ? Vec2::Zero() : velocity;
   integrator_->restart();
+  restart_stretch();
   // A hand that drags a particle far adds energy no step made: not a divergence.
   reference_energy_ = std::max(reference_energy_, diagnostics().total());
 }
@@ -138,6 +149,7 @@ void Simulation::set_pinned(int i, bool pinned) {
       std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
   if (pinned) particles.velocity.col(i).setZero();
   integrator_->restart();
+  restart_stretch();
 }
 
 void Simulation::continue_from(const Simulation& previous) {
@@ -149,6 +161,24 @@ void Simulation::continue_from(const Simulation& previous) {
   steps_ = 0;
   start_position_ = previous.start_position_;
   reference_energy_ = std::max(reference_energy_, previous.reference_energy_);
+  restart_stretch();
+}
+
+void Simulation::restart_stretch() {
+  stretch_time_ = time();
+  stretch_steps_ = 0;
+  // Huge scenes keep no copy: their diagnosis rests on the step limit alone.
+  if (limits_.diagnose && scene_.particles.size() <= DiagnosisBudget{}.particles)
+    stretch_start_ = scene_.particles;
+  else
+    stretch_start_.reset();
+}
+
+std::string Simulation::diagnosis() const {
+  if (!limits_.diagnose) return "";
+  if (!stretch_start_) return diagnose_divergence(scene_, *impl_, stretch_time_, 0).words;
+  const Scene start{scene_.parameters, *stretch_start_, scene_.springs};
+  return diagnose_divergence(start, *impl_, stretch_time_, stretch_steps_).words;
 }
 
 void Simulation::check_divergence(bool check_energy) const {
@@ -156,8 +186,8 @@ void Simulation::check_divergence(bool check_energy) const {
   if (!particles.position.allFinite() || !particles.velocity.allFinite()) {
     const auto [particle, quantity] = first_non_finite(particles);
     std::ostringstream why;
-    why << "it is no longer a finite number; the step h = " << scene_.parameters.step
-        << " s is probably beyond the stability limit of " << integrator_->name();
+    why << "it is no longer a finite number.";
+    if (const std::string words = diagnosis(); !words.empty()) why << ' ' << words;
     throw DivergenceError(time(), particle, quantity, why.str());
   }
   if (!check_energy) return;
@@ -168,9 +198,8 @@ void Simulation::check_divergence(bool check_energy) const {
   std::ostringstream why;
   why << "the total energy " << energy << " J is more than " << limits_.energy_growth
       << " times its reference " << reference_energy_ << " J (runaway growth); particle " << fastest
-      << " is the fastest at " << particles.velocity.col(fastest).norm()
-      << " m/s. Springs and dampers cannot add energy, so the step h = " << scene_.parameters.step
-      << " s is beyond the stability limit of " << integrator_->name();
+      << " is the fastest at " << particles.velocity.col(fastest).norm() << " m/s.";
+  if (const std::string words = diagnosis(); !words.empty()) why << ' ' << words;
   throw DivergenceError(time(), int(fastest), "total energy", why.str());
 }
 

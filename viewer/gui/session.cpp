@@ -6,6 +6,7 @@
 #include "springlab/stability.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -199,7 +200,9 @@ void Session::report(const std::exception& error, const std::string& whose) {
     std::string why = error.what();
     const std::string where = diverged->quantity() + ": ";
     if (const auto at = why.find(where); at != std::string::npos) why.erase(0, at + where.size());
-    problem_ = problem_of(Problem::Kind::diverged, headline.str(), "why: " + why);
+    // What ran away, then the kit's "Why: ..." (divergence.hpp), as one sentence each.
+    if (!why.empty()) why[0] = char(std::toupper(static_cast<unsigned char>(why[0])));
+    problem_ = problem_of(Problem::Kind::diverged, headline.str(), why);
     problem_.time = diverged->time();
     problem_.particle = diverged->particle();
     problem_.quantity = diverged->quantity();
@@ -248,6 +251,10 @@ void Session::advance(long steps) {
       primary_->step();
     } catch (const std::exception& error) {
       report(error, code_ == Code::student && reference_ ? "Your code: " : "");
+      // The reference, run beside it, has come this far: say so (the kit's diagnosis of the
+      // divergence never runs the reference).
+      if (reference_ && problem_.kind == Problem::Kind::diverged && reference_is_available())
+        problem_.detail += " The reference code, run beside yours, is still stable at this h.";
     }
     if (!reference_ || problem_.kind != Problem::Kind::none) continue;
     try {

@@ -179,6 +179,25 @@ void print_stability_report(std::ostream& out, const SceneParameters& p,
   }
 }
 
+// When the student's code diverged: the reference code on the same scene and step, for as many
+// steps, as one more sentence of the report (the kit's diagnosis never runs the reference).
+std::string reference_verdict(const SceneParameters& p, const Implementation& impl, long steps) {
+  if (impl.student_task == 0 || !reference_is_available()) return "";
+  DivergenceLimits quiet;
+  quiet.diagnose = false;
+  try {
+    Simulation reference(p, reference_implementation(), quiet);
+    reference.advance(steps);
+    reference.check();
+  } catch (const DivergenceError& error) {
+    std::ostringstream out;
+    out << " The reference code diverges too on this scene at this h (at t = " << error.time()
+        << " s).";
+    return out.str();
+  }
+  return " The reference code is stable at this h on this scene for as long: look at your code.";
+}
+
 int run(const Options& options) {
   if (options.every < 1)
     throw InvalidParameter("--every", std::to_string(options.every), "a whole number >= 1");
@@ -203,11 +222,20 @@ int run(const Options& options) {
   const Diagnostics start = sim.diagnostics();
   const long steps = steps_for(p);
   const auto clock_start = std::chrono::steady_clock::now();
-  for (long n = 1; n <= steps; ++n) {
-    sim.step();
-    if (csv && (n % options.every == 0 || n == steps)) write_csv_row(*csv, sim);
+  try {
+    for (long n = 1; n <= steps; ++n) {
+      sim.step();
+      if (csv && (n % options.every == 0 || n == steps)) write_csv_row(*csv, sim);
+    }
+    sim.check();  // the energy is watched every few steps only: look once more at the end
+  } catch (const DivergenceError& error) {
+    const std::string verdict = reference_verdict(p, sim.implementation(), sim.steps_taken());
+    if (verdict.empty()) throw;
+    std::string why = error.what();  // the report after "quantity: ", as the viewer shows it
+    if (const auto at = why.find(error.quantity() + ": "); at != std::string::npos)
+      why.erase(0, at + error.quantity().size() + 2);
+    throw DivergenceError(error.time(), error.particle(), error.quantity(), why + verdict);
   }
-  sim.check();  // the energy is watched every few steps only: look once more at the end
   const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - clock_start;
   if (!options.quiet) {
     print_summary(report, sim, start, wall.count());

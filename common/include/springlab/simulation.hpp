@@ -8,6 +8,7 @@
 #include "springlab/scene.hpp"
 #include "springlab/wind.hpp"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string_view>
@@ -26,7 +27,16 @@ struct DivergenceLimits {
   double energy_growth = 1e4;
   /// Steps between energy checks (finiteness is checked every step).
   int energy_check_interval = 8;
+  /// Whether a divergence report says why, from physics (divergence.hpp): the run keeps its
+  /// state at the start (or at the last set_particle, set_pinned or continue_from) and, when it
+  /// diverges, replays itself from there with the same code, watching the laws the forces must
+  /// keep, and compares h with the method's critical step on the scene.
+  bool diagnose = true;
 };
+
+namespace detail {
+struct ReplayAccess;
+}
 
 class Simulation {
  public:
@@ -38,7 +48,8 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   /// One step of h = parameters().step. Throws DivergenceError (when, which particle, what) if
-  /// the state stops being finite or the energy runs away.
+  /// the state stops being finite or the energy runs away; its message ends with the diagnosis
+  /// of diagnose_divergence (divergence.hpp) when limits.diagnose.
   void step();
   void advance(long steps);
   /// The full divergence check (finiteness and energy) on the current state; step() checks the
@@ -79,8 +90,17 @@ class Simulation {
   void continue_from(const Simulation& previous);
 
  private:
+  friend struct detail::ReplayAccess;
+  /// What a replay sees of the forces: after the springs (stage 0) and after gravity (stage 1).
+  using ForceWatch =
+      std::function<void(int stage, const Vectors& r, const Vectors& v, const Vectors& force)>;
+
   void check_divergence(bool check_energy) const;
   void check_index(int i) const;
+  /// The state a diagnosis replays from: the current one, from now on.
+  void restart_stretch();
+  /// diagnose_divergence's words on the steps since restart_stretch, or "" without diagnose.
+  std::string diagnosis() const;
 
   Scene scene_;
   const Implementation* impl_;
@@ -97,6 +117,10 @@ class Simulation {
   std::vector<int> pushed_;        // the particles the push acts on
   Vectors start_position_;         // where gravity's potential energy is zero
   Vectors force_, acceleration_;
+  std::optional<Particles> stretch_start_;  // the state a diagnosis replays from (small scenes)
+  double stretch_time_ = 0.0;               // s, its time
+  long stretch_steps_ = 0;                  // steps since then
+  ForceWatch force_watch_;                  // a replay's look at the forces
 };
 
 }  // namespace springlab

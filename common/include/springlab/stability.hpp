@@ -115,6 +115,13 @@ struct CriticalStep {
 ///   implicit-euler       infinity.
 CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator);
 
+/// The critical step of `integrator` estimated from bounds alone, for scenes too large for
+/// eigen-solves: ω_max ≤ frequency_bound (rad/s) and every mode's damping rate c ≤ damping_bound
+/// (1/s), and each per-mode limit falls as ω and c grow. Not computed for explicit-euler, whose
+/// limit hangs on each mode's damping ratio.
+CriticalStep estimated_critical_step(std::string_view integrator, double frequency_bound,
+                                     double damping_bound);
+
 /// critical_step_of(model, integrator).step.
 double critical_step(const LinearModel& model, std::string_view integrator);
 

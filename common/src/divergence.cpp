@@ -1,0 +1,646 @@
+// The diagnosis of a diverged run (divergence.hpp): a replay with the same code that watches the
+// laws the forces must keep, then the step limit of the method.
+#include "springlab/divergence.hpp"
+
+#include "springlab/diagnostics.hpp"
+#include "springlab/errors.hpp"
+#include "springlab/simulation.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <climits>
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace springlab {
+namespace detail {
+
+// The two things a replay needs of a Simulation that no one else should use.
+struct ReplayAccess {
+  static void start_at(Simulation& sim, double time) { sim.start_time_ = time; }
+  static void watch_forces(Simulation& sim, Simulation::ForceWatch watch) {
+    sim.force_watch_ = std::move(watch);
+  }
+};
+
+}  // namespace detail
+
+namespace {
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
+
+std::string number(double x, int precision = 3) {
+  std::ostringstream out;
+  out << std::setprecision(precision) << x;
+  return out.str();
+}
+
+// A component below rounding of the other (1e-12 of the length) is written 0.
+std::string vector_text(const Vec2& v) {
+  const auto component = [&](double x) { return std::abs(x) <= 1e-12 * v.norm() ? 0.0 : x; };
+  return "(" + number(component(v.x())) + ", " + number(component(v.y())) + ")";
+}
+
+std::string method_name(std::string_view integrator) {
+  if (integrator == "explicit-euler") return "explicit Euler";
+  if (integrator == "symplectic-euler") return "symplectic Euler";
+  if (integrator == "verlet") return "Verlet";
+  if (integrator == "velocity-verlet") return "velocity Verlet";
+  if (integrator == "rk4") return "RK4";
+  if (integrator == "implicit-euler") return "implicit Euler";
+  return std::string(integrator);
+}
+
+bool is_grid(const Scene& scene) {
+  return scene.particles.size() == scene.parameters.rows * scene.parameters.cols;
+}
+
+// The grid at rest (no particle displaced) for a grid scene, else the particles where they are.
+Vectors rest_positions(const Scene& scene) {
+  if (!is_grid(scene)) return scene.particles.position;
+  const SceneParameters& p = scene.parameters;
+  Vectors r(2, scene.particles.size());
+  for (int i = 0; i < scene.particles.size(); ++i)
+    r.col(i) = grid_position(i / p.cols, i % p.cols, p.spacing);
+  return r;
+}
+
+// The kit's own spring (1.1) and damper (1.2) forces, each added to p and subtracted from q (2.4).
+void kit_forces(const std::vector<Spring>& springs, const Vectors& r, const Vectors& v,
+                Vectors& spring, Vectors& damper) {
+  spring.setZero(2, r.cols());
+  damper.setZero(2, r.cols());
+  for (const Spring& s : springs) {
+    const Vec2 d = r.col(s.p) - r.col(s.q);
+    const double length = d.norm();
+    const Vec2 fs =
+        length > 0.0 ? Vec2(-s.k * (length - s.rest_length) * d / length) : Vec2::Zero();
+    const Vec2 fd = -s.b * (v.col(s.p) - v.col(s.q));
+    spring.col(s.p) += fs;
+    spring.col(s.q) -= fs;
+    damper.col(s.p) += fd;
+    damper.col(s.q) -= fd;
+  }
+}
+
+// The least-squares fit F ≈ α·(kit's spring forces) + β·(kit's damper forces) over the forces the
+// run's code gave: α = β = 1 for correct forces, -1 for a sign that points the wrong way.
+struct SignFit {
+  double ss = 0, sd = 0, dd = 0, fs = 0, fd = 0, ff = 0;
+  int samples = 0;
+
+  void add(const Vectors& f, const Vectors& s, const Vectors& d) {
+    ss += (s.array() * s.array()).sum();
+    sd += (s.array() * d.array()).sum();
+    dd += (d.array() * d.array()).sum();
+    fs += (f.array() * s.array()).sum();
+    fd += (f.array() * d.array()).sum();
+    ff += (f.array() * f.array()).sum();
+    ++samples;
+  }
+  struct Result {
+    bool exact = false;  // the forces are α·spring + β·damper to rounding
+    double alpha = 1.0, beta = 1.0;
+    bool has_damping = false;
+  };
+  Result solve() const {
+    Result r;
+    if (ss <= 0.0 || ff <= 0.0) return r;
+    r.has_damping = dd > 1e-12 * ss;
+    if (r.has_damping) {
+      const double det = ss * dd - sd * sd;
+      if (det <= 1e-12 * ss * dd) return r;
+      r.alpha = (fs * dd - fd * sd) / det;
+      r.beta = (fd * ss - fs * sd) / det;
+    } else {
+      r.alpha = fs / ss;
+    }
+    const double residual = ff - 2 * (r.alpha * fs + r.beta * fd) + r.alpha * r.alpha * ss +
+                            2 * r.alpha * r.beta * sd + r.beta * r.beta * dd;
+    if (!r.has_damping) r.beta = 1.0;
+    r.exact = residual <= 1e-8 * ff;
+    return r;
+  }
+};
+
+// A mirror of the grid onto itself: particle i ↔ image[i], x or y reflected about `centre`.
+struct Mirror {
+  std::string name;  // "left-right", "up-down"
+  int axis = 0;      // the coordinate reflected: 0 = x, 1 = y
+  double centre = 0.0;
+  std::vector<int> image;
+
+  Vec2 reflect(const Vec2& r) const {
+    Vec2 m = r;
+    m[axis] = 2 * centre - r[axis];
+    return m;
+  }
+  Vec2 reflect_direction(const Vec2& v) const {
+    Vec2 m = v;
+    m[axis] = -v[axis];
+    return m;
+  }
+  // The largest distance between a particle and the mirror image of its partner, m.
+  double mismatch(const Vectors& r) const {
+    double worst = 0.0;
+    for (std::size_t i = 0; i < image.size(); ++i)
+      worst = std::max(worst, (r.col(Eigen::Index(i)) - reflect(r.col(image[i]))).norm());
+    return worst;
+  }
+};
+
+// The mirrors under which the start state, the masses, the pins and gravity are symmetric (to
+// rounding); none when the wind or the push acts, whose fields need not be.
+std::vector<Mirror> symmetric_mirrors(const Scene& scene) {
+  std::vector<Mirror> mirrors;
+  const SceneParameters& p = scene.parameters;
+  const Particles& particles = scene.particles;
+  if (!is_grid(scene) || p.wind.enabled || (p.push_duration > 0 && !p.push.isZero()))
+    return mirrors;
+  const int n = particles.size();
+  const double tolerance = 1e-9 * p.spacing;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (p.gravity.enabled && p.gravity.acceleration[axis] != 0.0) continue;
+    Mirror m;
+    m.name = axis == 0 ? "left-right" : "up-down";
+    m.axis = axis;
+    m.centre = axis == 0 ? 0.5 * (p.cols - 1) * p.spacing : -0.5 * (p.rows - 1) * p.spacing;
+    m.image.resize(std::size_t(n));
+    bool symmetric = true;
+    for (int i = 0; i < n && symmetric; ++i) {
+      const int row = i / p.cols, col = i % p.cols;
+      const int j =
+          axis == 0 ? row * p.cols + (p.cols - 1 - col) : (p.rows - 1 - row) * p.cols + col;
+      m.image[std::size_t(i)] = j;
+      symmetric =
+          (particles.position.col(i) - m.reflect(particles.position.col(j))).norm() <= tolerance &&
+          (particles.velocity.col(i) - m.reflect_direction(particles.velocity.col(j))).norm() <=
+              tolerance &&
+          particles.mass[i] == particles.mass[j] &&
+          particles.pinned[std::size_t(i)] == particles.pinned[std::size_t(j)];
+    }
+    if (symmetric) mirrors.push_back(std::move(m));
+  }
+  return mirrors;
+}
+
+// A spring whose mirror image is not in the list: the likely place of a symmetry broken.
+std::string unmatched_spring(const std::vector<Spring>& springs, const Mirror& mirror) {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(springs.size());
+  for (const Spring& s : springs)
+    pairs.emplace_back(std::min(s.p, s.q), std::max(s.p, s.q));
+  std::sort(pairs.begin(), pairs.end());
+  for (const auto& [p, q] : pairs) {
+    const int mp = mirror.image[std::size_t(p)], mq = mirror.image[std::size_t(q)];
+    if (!std::binary_search(pairs.begin(), pairs.end(),
+                            std::pair{std::min(mp, mq), std::max(mp, mq)}))
+      return "the spring between particles " + std::to_string(p) + " and " + std::to_string(q) +
+             " has no mirror image (between " + std::to_string(std::min(mp, mq)) + " and " +
+             std::to_string(std::max(mp, mq)) + ")";
+  }
+  return "";
+}
+
+// The equations of the spring lists the scene uses.
+std::string spring_list_equations(const SceneParameters& p) {
+  std::string list = "(2.1), (2.2)";
+  if (p.shear.enabled) list += ", (3.1)";
+  if (p.bend.enabled) list += ", (5.1)";
+  return list;
+}
+
+// "h = 0.01 s is 2 times the critical step 0.005 s of explicit Euler on this scene" and the like.
+std::string step_comparison(const Diagnosis& d, const Scene& scene) {
+  const std::string_view integrator = scene.parameters.integrator;
+  const int particles = scene.particles.size();
+  const std::string method = method_name(integrator);
+  const CriticalStep& c = d.critical;
+  std::ostringstream out;
+  out << "h = " << d.step << " s";
+  if (c.source == LimitSource::not_computed) {
+    out << ": the critical step of " << method << " is not computed for a scene of " << particles
+        << " particles (springlab-run --stability computes it up to " << exact_particles_max << ")";
+    double guide = infinity;  // the smallest b/k: explicit Euler's limit for one spring (1.6)
+    for (const Spring& s : scene.springs)
+      if (s.k > 0) guide = std::min(guide, s.b / s.k);
+    if (integrator == "explicit-euler" && std::isfinite(guide))
+      out << "; as a guide, for one spring it is b/k, equation (1.6), and the smallest b/k of "
+             "these springs is "
+          << number(guide) << " s, which h is " << (d.step > guide ? "beyond" : "below");
+    return out.str();
+  }
+  if (c.source == LimitSource::no_limit || std::isinf(c.step)) {
+    out << ": " << method << " has no critical step on this scene";
+    return out.str();
+  }
+  if (c.step == 0.0) {
+    out << " is beyond every step " << method
+        << " can take on this scene: some motion of it has no damping, and " << method
+        << " makes an undamped motion grow at every h";
+  } else {
+    const std::string estimate = c.source == LimitSource::modal_estimate ? "an estimate of " : "";
+    if (d.step > c.step)
+      out << " is " << number(d.step / c.step) << " times " << estimate << "the critical step "
+          << number(c.step) << " s of " << method << " on this scene";
+    else
+      out << " is below " << estimate << "the critical step " << number(c.step) << " s of "
+          << method << " on this scene";
+  }
+  if (!std::isnan(d.growth) && d.step > c.step)
+    out << " (each step multiplies its fastest-growing motion by " << number(d.growth, 4) << ")";
+  return out.str();
+}
+
+bool beyond_critical(const Diagnosis& d) {
+  return d.critical.source != LimitSource::not_computed && d.step > d.critical.step;
+}
+
+}  // namespace
+
+CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budget,
+                                 double* growth) {
+  const Particles& particles = scene.particles;
+  const SceneParameters& p = scene.parameters;
+  if (growth) *growth = not_a_number;
+  const auto free = std::count(particles.pinned.begin(), particles.pinned.end(), false);
+  if (free == 0) return {infinity, LimitSource::no_limit};
+  const Vectors rest = rest_positions(scene);
+  if (particles.size() <= budget.exact_particles) {  // as stability_report decides
+    LinearModel model = linearise(scene.springs, rest, particles.mass, particles.pinned);
+    if (p.wind.enabled) model.damping.diagonal().array() += p.wind.drag;
+    if (p.integrator == "explicit-euler" || p.integrator == "rk4") {  // one eigen-solve for both
+      const auto lambda = deforming_eigenvalues(model);
+      const double critical = polynomial_critical_step(lambda, p.integrator);
+      if (growth && p.step > critical)
+        *growth = polynomial_growth_factor(lambda, p.integrator, p.step);
+      return {critical, LimitSource::exact_formula};
+    }
+    const CriticalStep critical = critical_step_of(model, p.integrator);
+    if (growth && p.step > critical.step && p.integrator != "implicit-euler")
+      *growth = step_growth_factor(model, p.integrator, p.step);
+    return critical;
+  }
+  const double w = highest_frequency_bound(scene.springs, rest, particles.mass, particles.pinned);
+  double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
+  if (p.wind.enabled) c += p.wind.drag / particles.mass.minCoeff();
+  return estimated_critical_step(p.integrator, w, c);
+}
+
+Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, double start_time,
+                              long steps, const DiagnosisBudget& budget) {
+  const SceneParameters& p = start.parameters;
+  const Particles& particles = start.particles;
+  const int n = particles.size();
+  Diagnosis d;
+  d.step = p.step;
+  d.critical = scene_critical_step(start, budget, &d.growth);
+
+  // What the replay watches.
+  const bool pinned =
+      std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
+  const bool pushed = p.push_duration > start_time && !p.push.isZero() && p.pushed != "none";
+  const bool free_of_outside = !p.gravity.enabled && !p.wind.enabled && !pushed && !pinned;
+  const bool gravity_only = p.gravity.enabled && !p.wind.enabled && !pushed && !pinned;
+  const std::vector<Mirror> mirrors = symmetric_mirrors(start);
+  const double total_mass = particles.mass.sum();
+  const Vec2 g = p.gravity.enabled ? p.gravity.acceleration : Vec2::Zero();
+
+  long budget_steps = 0;
+  if (n <= budget.particles && steps > 0)
+    budget_steps = std::min(steps, long(std::max(1.0, budget.particle_steps / std::max(n, 1))));
+
+  bool start_finite = true;
+  SignFit fit;
+  const Vec2 p0 = linear_momentum(particles.mass, particles.velocity);
+  double momentum_scale =
+      (particles.mass.transpose() * particles.velocity.colwise().norm().transpose()).value();
+  double momentum_broke = not_a_number, symmetry_broke = not_a_number;
+  double gravity_wrong = not_a_number;  // s, when add_gravity first added other than m_i g
+  int gravity_particle = -1;
+  Vec2 gravity_added = Vec2::Zero(), gravity_spring = Vec2::Zero();  // N
+  double energy_doubled = not_a_number, start_energy = 0.0, end_energy = 0.0, reference = 0.0;
+  double energy_time = start_time;  // s, when end_energy was measured
+  Vec2 momentum_end = p0, deviation_end = Vec2::Zero();
+  double asymmetry_end = 0.0, asymmetry_at_break = 0.0;
+  const Mirror* broken_mirror = nullptr;
+  bool symmetry_window = true;
+  double end_time = start_time;
+  long replayed = 0;
+  if (budget_steps > 0) {
+    try {
+      DivergenceLimits quiet;
+      quiet.energy_growth = infinity;
+      quiet.energy_check_interval = INT_MAX;
+      quiet.diagnose = false;
+      Simulation replay(Scene(start), impl, quiet);
+      detail::ReplayAccess::start_at(replay, start_time);
+      Vectors kit_spring, kit_damper;
+      long evaluations = 0;
+      Vectors spring_forces;
+      detail::ReplayAccess::watch_forces(
+          replay, [&](int stage, const Vectors& r, const Vectors& v, const Vectors& f) {
+            if (stage == 1) {  // what add_gravity added, against m_i g (5.2)
+              if (!std::isnan(gravity_wrong) || spring_forces.cols() != f.cols()) return;
+              const Vectors added = f - spring_forces;
+              for (Eigen::Index i = 0; i < f.cols(); ++i) {
+                const Vec2 expected = particles.mass[i] * g;
+                const Vec2 error = added.col(i) - expected;
+                if (!(error.norm() <= 1e-9 * (expected.norm() + spring_forces.col(i).norm()))) {
+                  gravity_wrong = replay.time();
+                  gravity_particle = int(i);
+                  gravity_added = added.col(i);
+                  gravity_spring = spring_forces.col(i);
+                  break;
+                }
+              }
+              return;
+            }
+            spring_forces = f;
+            if (++evaluations == 1) start_finite = f.allFinite();
+            if (fit.samples >= 400 || !f.allFinite() || !r.allFinite() || !v.allFinite()) return;
+            kit_forces(start.springs, r, v, kit_spring, kit_damper);
+            fit.add(f, kit_spring, kit_damper);
+          });
+      start_energy = replay.diagnostics().total();
+      reference = replay.reference_energy();
+      const Vectors& r0 = particles.position;
+      const int check_every = 8;
+      for (long k = 0; k < budget_steps; ++k) {
+        ++replayed;  // counted when tried: the run's last step may be the one that fails
+        replay.step();
+        const Particles& now = replay.particles();
+        const double t = replay.time();
+        end_time = t;
+        momentum_scale =
+            std::max(momentum_scale,
+                     (now.mass.transpose() * now.velocity.colwise().norm().transpose()).value());
+        const Vec2 momentum = linear_momentum(now.mass, now.velocity);
+        if (free_of_outside || gravity_only) {
+          const Vec2 deviation = momentum - p0 - (t - start_time) * total_mass * g;
+          double tolerance = 1e-6 * std::max(momentum_scale, 1e-3 * total_mass * p.spacing);
+          if (gravity_only) tolerance += 2 * p.step * total_mass * g.norm();
+          if (std::isnan(momentum_broke) && deviation.norm() > tolerance) momentum_broke = t;
+          momentum_end = momentum;
+          deviation_end = deviation;
+        }
+        // Symmetry is judged until a particle first moves a grid spacing from where the whole
+        // grid moved: a motion that large may break it on its own (a symmetric oscillation can
+        // pump an antisymmetric one out of rounding), and one that runs away amplifies the
+        // rounding of mirrored sums without bound.
+        if (!mirrors.empty()) {
+          const Vectors moved = now.position - r0;
+          const Vec2 mean = moved.rowwise().mean();
+          symmetry_window =
+              symmetry_window && (moved.colwise() - mean).colwise().norm().maxCoeff() <= p.spacing;
+          for (const Mirror& m : mirrors) {
+            if (!broken_mirror && symmetry_window) {
+              const double mismatch = m.mismatch(now.position);
+              if (mismatch > 1e-6 * p.spacing) {
+                symmetry_broke = t;
+                broken_mirror = &m;
+                asymmetry_at_break = mismatch;
+              }
+            }
+            if (&m == broken_mirror) asymmetry_end = m.mismatch(now.position);
+          }
+        }
+        if (k % check_every == check_every - 1 || k + 1 == budget_steps) {
+          end_energy = replay.diagnostics().total();
+          energy_time = t;
+          if (std::isnan(energy_doubled) && end_energy > 2 * reference) energy_doubled = t;
+        }
+      }
+    } catch (const std::exception&) {
+      // The replay diverged too (it ends where the run did) or its code failed: what it saw so far
+      // is the evidence.
+    }
+  }
+  d.replayed = end_time - start_time;
+  d.replayed_all = budget_steps > 0 && replayed == steps;
+
+  std::ostringstream words;
+  const SignFit::Result signs = fit.solve();
+  // What the replay could check on this scene, in words.
+  std::string kept;
+  if (replayed > 0) {
+    std::vector<std::string> laws;
+    if (free_of_outside) laws.push_back("the total momentum, (2.4)");
+    if (gravity_only) laws.push_back("the momentum gravity gives, (5.2)");
+    if (!mirrors.empty()) laws.push_back("the mirror symmetry of the start");
+    if (fit.samples > 0)
+      laws.push_back("the directions of the spring and damper forces, (1.1) and (1.2)");
+    for (std::size_t i = 0; i < laws.size(); ++i)
+      kept += (i == 0 ? "" : i + 1 == laws.size() ? " and " : ", ") + laws[i];
+  }
+  const std::string kept_words = kept.empty()
+                                     ? "the kit could check no law of the forces here"
+                                     : "the forces kept what the kit checks (" + kept + ")";
+  const std::string step_words = step_comparison(d, start);
+  // After a broken law: whether h is to blame as well.
+  const auto about_h = [&] {
+    if (beyond_critical(d))
+      return " Besides, " + step_words + ": fix the forces first, then make h smaller.";
+    if (d.critical.source == LimitSource::not_computed) return std::string();
+    return " The step is not the cause: " + step_words + ".";
+  };
+
+  if (!start_finite) {
+    d.law = BrokenLaw::start_forces;
+    d.time = start_time;
+    d.equation = "(1.1)";
+    words << "Why: the spring forces at the start (t = " << start_time
+          << " s) are not finite numbers, before any step. ";
+    int coincident = -1;
+    for (std::size_t s = 0; s < start.springs.size() && coincident < 0; ++s) {
+      const Spring& spring = start.springs[s];
+      if ((particles.position.col(spring.p) - particles.position.col(spring.q)).norm() == 0.0)
+        coincident = int(s);
+    }
+    if (coincident >= 0) {
+      const Spring& s = start.springs[std::size_t(coincident)];
+      words << "Spring " << coincident << " joins particles " << s.p << " and " << s.q
+            << ", which start at the same place: the direction (r_p - r_q) / |r_p - r_q| in "
+               "equation (1.1) divides by the length 0. Where the ends coincide, give the spring "
+               "force 0.";
+    } else {
+      words << "Look for a division by a length or a distance that is 0 in equation (1.1), and "
+               "for values used before they are set.";
+    }
+  } else if (!std::isnan(momentum_broke) && free_of_outside) {
+    d.law = BrokenLaw::momentum;
+    d.time = momentum_broke;
+    d.amount = (momentum_end - p0).norm();
+    d.equation = "(2.4)";
+    words << "Why: the total momentum (the sum of m_i v_i) grew from " << number(p0.norm())
+          << " kg*m/s to " << number(momentum_end.norm()) << " kg*m/s by t = " << end_time
+          << " s (it first changed at t = " << momentum_broke
+          << " s), but with no gravity, wind, push or pin acting, nothing outside the springs can "
+             "change it: some spring pushes both of its ends the same way, or only one of them. "
+             "Add F_pq to particle p and subtract it from particle q, equation (2.4): F_qp = "
+             "-F_pq."
+          << about_h();
+  } else if (!std::isnan(momentum_broke) && gravity_only && std::isnan(gravity_wrong)) {
+    // add_gravity added m_i g to every particle: the springs changed the momentum.
+    d.law = BrokenLaw::momentum;
+    d.time = momentum_broke;
+    d.amount = deviation_end.norm();
+    d.equation = "(2.4)";
+    words << "Why: gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
+             "total mass times g, but by t = "
+          << end_time << " s it had changed by " << vector_text(deviation_end)
+          << " kg*m/s more than that (first at t = " << momentum_broke
+          << " s), and gravity was added right (m_i g, equation (5.2)): some spring pushes both "
+             "of its ends the same way, or only one of them. Add F_pq to particle p and subtract "
+             "it from particle q, equation (2.4): F_qp = -F_pq."
+          << about_h();
+  } else if ((!std::isnan(momentum_broke) && gravity_only) || !std::isnan(gravity_wrong)) {
+    d.law = BrokenLaw::gravity;
+    d.equation = "(5.2)";
+    words << "Why: ";
+    if (!std::isnan(momentum_broke) && gravity_only) {
+      d.time = momentum_broke;
+      d.amount = deviation_end.norm();
+      const double t = end_time - start_time;
+      const Vec2 expected = t * total_mass * g;
+      const Vec2 actual = momentum_end - p0;
+      const double share = actual.dot(g) / std::max(expected.dot(g), 1e-300);
+      words << "gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
+               "total mass times g, "
+            << vector_text(expected) << " kg*m/s by t = " << end_time << " s, but it changed by "
+            << vector_text(actual) << " kg*m/s (" << number(share)
+            << " times that; it first differed at t = " << momentum_broke << " s). ";
+    }
+    if (!std::isnan(gravity_wrong)) {
+      if (std::isnan(d.time)) d.time = gravity_wrong;
+      const int i = gravity_particle;
+      const Vec2 expected = particles.mass[i] * g;
+      if (d.amount == 0.0) d.amount = (gravity_added - expected).norm();
+      words << "At t = " << gravity_wrong << " s add_gravity changed the force on particle " << i
+            << " by " << vector_text(gravity_added)
+            << " N, but its gravity is m_i g = " << vector_text(expected) << " N ("
+            << number(particles.mass[i]) << " kg times g)";
+      if ((gravity_added - g).norm() <= 1e-9 * g.norm() && std::abs(particles.mass[i] - 1) > 1e-9)
+        words << ": that is g without the mass";
+      else if ((gravity_added + expected).norm() <= 1e-9 * expected.norm())
+        words << ": that is gravity pointing the wrong way";
+      else if ((gravity_added + gravity_spring - expected).norm() <=
+               1e-9 * (expected.norm() + gravity_spring.norm()))
+        words << ": the force was set to m_i g, and the spring forces already in it were lost";
+      words << ". ";
+    }
+    words << "Gravity on particle i is m_i g, equation (5.2): F_i += m_i g, added to the forces "
+             "already there."
+          << about_h();
+  } else if (!std::isnan(symmetry_broke)) {
+    d.law = BrokenLaw::symmetry;
+    d.time = symmetry_broke;
+    d.amount = asymmetry_end;
+    d.equation = spring_list_equations(p);
+    words << "Why: the start is " << broken_mirror->name
+          << " mirror symmetric, so the motion must stay its own mirror image, but at t = "
+          << symmetry_broke << " s a particle was " << number(asymmetry_at_break)
+          << " m from the mirror image of its partner (" << number(asymmetry_end)
+          << " m by t = " << end_time << " s): ";
+    const std::string spring = unmatched_spring(start.springs, *broken_mirror);
+    if (!spring.empty())
+      words << spring << ". ";
+    else
+      words << "the forces on mirrored particles differ. ";
+    words << "A spring is missing, doubled or joins the wrong particles: check the index formula "
+             "(2.1), index = i*cols + j, and the spring lists "
+          << spring_list_equations(p) << "." << about_h();
+  } else if (signs.exact && (signs.alpha < -0.5 || (signs.has_damping && signs.beta < -0.5) ||
+                             (signs.has_damping && std::abs(signs.beta) < 0.05))) {
+    d.law = BrokenLaw::energy;
+    d.time = energy_doubled;
+    const bool spring = signs.alpha < -0.5;
+    const bool damper_missing = !spring && std::abs(signs.beta) < 0.05;
+    d.amount = spring ? signs.alpha : signs.beta;
+    d.equation = spring ? "(1.1)" : "(1.2)";
+    words << "Why: ";
+    if (damper_missing) {
+      words << "the dampers give no force, so nothing removes energy: the damper force is "
+               "F_pq = -b (v_p - v_q), equation (1.2), added with the spring force as in (2.3).";
+    } else {
+      words << "springs and dampers can only store or remove energy, but the "
+            << (spring ? "spring" : "damper") << " forces point the wrong way (they are "
+            << number(d.amount) << " times what equation " << d.equation
+            << " gives), so each step gives energy";
+      if (!std::isnan(energy_doubled))
+        words << ": the total energy rose from " << number(start_energy) << " J to "
+              << number(end_energy) << " J by t = " << energy_time << " s";
+      words << ". Check the sign in "
+            << (spring ? "F_pq = -k (|r_p - r_q| - l0) (r_p - r_q) / |r_p - r_q|, equation (1.1)"
+                       : "F_pq = -b (v_p - v_q), equation (1.2)")
+            << ", and how (2.3) adds it.";
+    }
+    words << about_h();
+  } else if (beyond_critical(d)) {
+    d.law = BrokenLaw::step_size;
+    d.time = start_time;
+    d.amount = d.critical.step > 0 ? d.step / d.critical.step : infinity;
+    words << "Why: " << step_words << ". ";
+    if (!kept.empty()) {
+      std::string sentence = kept_words + ". ";
+      sentence[0] = char(std::toupper(sentence[0]));
+      words << sentence;
+    }
+    if (d.critical.step > 0)
+      words << "Make h smaller than " << number(d.critical.step)
+            << " s, or choose an integrator with a larger critical step (springlab-run "
+               "--stability lists them).";
+    else
+      words << "Choose another integrator (springlab-run --stability lists their critical "
+               "steps).";
+  } else if (budget_steps == 0 && n > budget.particles) {
+    d.law = BrokenLaw::none;
+    words << "Why: not replayed, the scene's " << n << " particles are more than the "
+          << budget.particles << " the diagnosis replays; " << step_words << ".";
+  } else if (d.critical.source == LimitSource::not_computed) {
+    d.law = BrokenLaw::none;
+    words << "Why: " << kept_words << "; " << step_words
+          << ". If h is beyond the critical step, make h smaller or choose an integrator with a "
+             "larger one; if not, look for a spring or damper force that points the wrong way, "
+             "(1.1) and (1.2).";
+  } else {
+    if (!std::isnan(energy_doubled)) {
+      d.law = BrokenLaw::energy;
+      d.time = energy_doubled;
+      d.amount = end_energy - start_energy;
+      d.equation = "(2.3)";
+      words << "Why: the total energy rose from " << number(start_energy) << " J to "
+            << number(end_energy) << " J by t = " << energy_time << " s (twice its reference "
+            << number(reference) << " J at t = " << energy_doubled << " s), although " << step_words
+            << ": springs and dampers cannot give energy at such a step, so some spring or damper "
+               "force points the wrong way. Check the signs in (1.1) and (1.2) and how (2.3) adds "
+               "them.";
+    } else {
+      d.law = BrokenLaw::step_function;
+      d.time = start_time;
+      words << "Why: " << kept_words << "; " << step_words << ". ";
+      if (impl.student_task == 1 && p.integrator == "explicit-euler")
+        words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
+                 "from the values at the start of the step.";
+      else if (impl.student_task == 4 && p.integrator == "verlet")
+        words << "Look at the step itself: verlet_step, handout section 4.";
+      else
+        words << "The motion may have grown beyond the reach of the linear theory (large "
+                 "stretches); a smaller h helps.";
+    }
+  }
+  if (budget_steps > 0 && !d.replayed_all && replayed < steps && d.law != BrokenLaw::start_forces)
+    words << " (The diagnosis watched the first " << d.replayed << " s of the run only.)";
+  if (budget_steps == 0 && n > budget.particles && d.law != BrokenLaw::none)
+    words << " (The run was not replayed: its " << n << " particles are more than the "
+          << budget.particles << " the diagnosis replays, so the laws of the forces were not "
+          << "checked.)";
+  d.words = words.str();
+  return d;
+}
+
+}  // namespace springlab
