@@ -257,6 +257,24 @@ TEST_CASE("Wind: F_i = c (w(t, r_i) - v_i), nothing on a particle moving with th
   add_wind(wind, t, r, v, force);
   for (int i = 0; i < 5; ++i) {
     const Vec2 expected = before.col(i) + wind.drag() * (wind.velocity(t, r.col(i)) - v.col(i));
+    const Vec2 added = force.col(i) - before.col(i), w = wind.velocity(t, r.col(i));
+    const auto is = [&](const Vec2& candidate) { return (added - candidate).norm() <= 1e-12; };
+    const double c = wind.drag();
+    if (!is(c * (w - v.col(i)))) {
+      if (is(c * w))
+        UNSCOPED_INFO(
+            "the drag acts on the velocity relative to the wind, equation (5.3): "
+            "c (w - v_i), not c w");
+      else if (is(c * (v.col(i) - w)))
+        UNSCOPED_INFO(
+            "the drag pulls a particle towards the wind's velocity, equation (5.3): "
+            "c (w - v_i), not c (v_i - w)");
+      else if (is(c * (wind.velocity(t, Vec2::Zero()) - v.col(i))) ||
+               is(c * (wind.velocity(0.0, Vec2::Zero()) - v.col(i))))
+        UNSCOPED_INFO(
+            "the wind blows at each particle's own place and time, equation (5.4): "
+            "w(t, r_i), not w at the origin");
+    }
     CAPTURE(i);
     CHECK_THAT(Vec2(force.col(i)), IsNear(expected, 1e-12));
   }

@@ -246,7 +246,9 @@ StabilityReport stability_report(const SceneParameters& p, const Implementation&
   for (const std::string& name : integrator_names()) {
     CriticalStep limit;  // explicit-euler: its limit hangs on each mode's damping ratio
     if (name == "symplectic-euler") limit = estimate(symplectic_euler_mode_limit(w * w, c));
-    if (name == "verlet" || name == "velocity-verlet") limit = estimate(2.0 / w);
+    // 2/ω_max with ω_max ≤ ω_bound: a step that is certainly stable, not the limit itself.
+    if (name == "verlet" || name == "velocity-verlet")
+      limit = CriticalStep{2.0 / w, LimitSource::lower_bound};
     if (name == "rk4") limit = estimate(2.0 * std::sqrt(2.0) / w);
     if (name == "implicit-euler") limit = {infinity, LimitSource::no_limit};
     report.limits.push_back({name, limit});
