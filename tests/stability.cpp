@@ -292,3 +292,26 @@ TEST_CASE("Stability: beyond the limit a deformation grows at the step matrix's 
   CAPTURE(scene, method, h, history.size(), measured, predicted);
   CHECK_THAT(measured, WithinRel(predicted, 0.02));
 }
+
+TEST_CASE("Stability: on the 20x20 fabric the bound gives a step that is safe, below 2/w_max",
+          "[stability][theory]") {
+  // The viewer (above 100 particles) and springlab-run --stability (above 200) solve no
+  // eigenproblem and show Verlet's 2/w_bound, calling it a bound; handout section 5 quotes the
+  // exact 2/w_max and the bound, both as computed here.
+  const SceneParameters p = task_scene(5);
+  const StabilityReport report = stability_report(p, implementation(), 0);
+  const auto verlet = std::find_if(report.limits.begin(), report.limits.end(),
+                                   [](const auto& limit) { return limit.integrator == "verlet"; });
+  REQUIRE(verlet != report.limits.end());
+  const LinearModel model = linearise_at_rest(p, implementation());
+  const double exact = verlet_critical_step(model);
+  const double bound = verlet->critical.step;
+  CAPTURE(exact, bound, highest_frequency(model), report.frequency_bound);
+  CHECK(verlet->critical.source == LimitSource::lower_bound);
+  CHECK(bound < exact);
+  CHECK_THAT(bound, WithinRel(2.0 / report.frequency_bound, 1e-12));
+  // The handout's figures: "2/ω_max ≈ 0.084 s", "a bound, 2/29.7 ≈ 0.067 s".
+  CHECK_THAT(exact, WithinAbs(0.084, 0.0005));
+  CHECK_THAT(bound, WithinAbs(0.067, 0.0005));
+  CHECK_THAT(report.frequency_bound, WithinAbs(29.7, 0.05));
+}

@@ -31,6 +31,46 @@ SceneParameters small_fabric(int rows, int cols, const std::string& integrator) 
   return p;
 }
 
+// What a gravity force looks like when (5.2) went wrong, for the line under the hint: "" when
+// `added` (the force add_gravity added) is m g.
+std::string gravity_mistake(const Vec2& added, const Vec2& before, double m, const Vec2& g) {
+  const auto is = [](const Vec2& a, const Vec2& b) { return (a - b).norm() <= 1e-12 * b.norm(); };
+  if (is(added, m * g)) return "";
+  if (is(added, g)) return "gravity is m·g per particle, equation (5.2): the mass m_i is missing";
+  if (is(added, -m * g)) return "gravity points along g, equation (5.2): +m_i g, not -m_i g";
+  if (is(added + before, m * g))
+    return "gravity is added to the force, equation (5.2): F_i += m_i g, not F_i = m_i g";
+  return "gravity is m·g per particle, equation (5.2): F_i += m_i g";
+}
+
+// Checks that the model of scene p adds g to the acceleration of every free particle, (m_i g) /
+// m_i, on top of the springs', at p's start moved a little (so that the springs pull) and at rest:
+// gravity's equation (5.2) is checked before any step can go wrong.
+void check_gravity(SceneParameters p) {
+  const Vec2 g = p.gravity.acceleration;
+  p.gravity.enabled = true;
+  Simulation with(p, implementation());
+  p.gravity.enabled = false;
+  Simulation without(p, implementation());
+  Vectors r = with.particles().position;
+  for (Eigen::Index i = 0; i < r.cols(); ++i)
+    r.col(i) += 0.05 * Vec2(std::sin(double(i)), std::cos(3.0 * double(i)));
+  const Vectors v = Vectors::Zero(2, r.cols());
+  const Vectors springs = without.acceleration(r, v);
+  const Vectors a = with.acceleration(r, v);
+  const Particles& particles = with.particles();
+  for (int i = 0; i < particles.size(); ++i) {
+    if (particles.pinned[std::size_t(i)]) continue;
+    const double m = particles.mass[i];
+    const Vec2 before = m * Vec2(springs.col(i));    // the springs' force
+    const Vec2 added = m * Vec2(a.col(i)) - before;  // what gravity added
+    const std::string mistake = gravity_mistake(added, before, m, g);
+    CAPTURE(i, m);
+    if (!mistake.empty()) UNSCOPED_INFO(mistake);
+    REQUIRE_THAT(Vec2(a.col(i)), IsNear(Vec2(springs.col(i)) + g, 1e-9 * (g.norm() + 1.0)));
+  }
+}
+
 int bend_count(int rows, int cols) {
   return rows * std::max(cols - 2, 0) + cols * std::max(rows - 2, 0);
 }
@@ -112,7 +152,7 @@ TEST_CASE("Bend springs resist folding: a row folded at its middle costs bend en
 }
 
 TEST_CASE("Gravity adds m_i g to each particle's force", "[task5][gravity]") {
-  INFO("equation (5.2): F_i += m_i g, on top of the forces already there");
+  INFO("gravity is m·g per particle, equation (5.2): F_i += m_i g, on top of the forces there");
   std::mt19937 engine(5);
   std::uniform_real_distribution<double> unit(0.1, 2.0);
   const int n = 7;
@@ -125,13 +165,17 @@ TEST_CASE("Gravity adds m_i g to each particle's force", "[task5][gravity]") {
   add_gravity(mass, g, force);
   for (int i = 0; i < n; ++i) {
     CAPTURE(i, mass[i]);
+    const std::string mistake =
+        gravity_mistake(Vec2(force.col(i) - before.col(i)), before.col(i), mass[i], g);
+    if (!mistake.empty()) UNSCOPED_INFO(mistake);
     CHECK_THAT(Vec2(force.col(i)), IsNear(Vec2(before.col(i)) + mass[i] * g, 1e-12));
   }
 }
 
 TEST_CASE("Free fall: gravity alone gives r0 + v0 t + g t^2 / 2", "[task5][gravity]") {
   INFO(
-      "(5.2) with no springs: both Verlets and RK4 are exact on a constant acceleration; "
+      "(5.2) gravity m g on a particle of mass m, no springs: both Verlets and RK4 are exact on a "
+      "constant acceleration; "
       "explicit Euler follows its own closed form r_n = r0 + v0 t_n + g h^2 n(n-1)/2, symplectic "
       "and implicit Euler r0 + v0 t_n + g h^2 n(n+1)/2: behind and ahead by g h t / 2");
   SceneParameters p;
@@ -140,12 +184,16 @@ TEST_CASE("Free fall: gravity alone gives r0 + v0 t + g t^2 / 2", "[task5][gravi
   p.gravity.enabled = true;
   p.gravity.acceleration = Vec2(0.5, -9.81);
   p.displaced = "none";
+  check_gravity(p);  // a = g, before any integrator runs
   const std::string integrator = GENERATE(from_range(integrator_names()));
   p.integrator = integrator;
   Scene scene = build_scene(p, implementation());
   randomise(scene.particles, 0.3, 2.0, 17);
+  for (int i = 0; i < scene.particles.size(); ++i)  // masses of 0.1 to 0.6 kg: a = g for each
+    scene.particles.mass[i] = 0.1 + 0.1 * i;
   const Vectors r0 = scene.particles.position, v0 = scene.particles.velocity;
   Simulation sim(std::move(scene), implementation());
+
   const long steps = 700;
   sim.advance(steps);
   const double t = sim.time(), h = p.step;
@@ -209,6 +257,24 @@ TEST_CASE("Wind: F_i = c (w(t, r_i) - v_i), nothing on a particle moving with th
   add_wind(wind, t, r, v, force);
   for (int i = 0; i < 5; ++i) {
     const Vec2 expected = before.col(i) + wind.drag() * (wind.velocity(t, r.col(i)) - v.col(i));
+    const Vec2 added = force.col(i) - before.col(i), w = wind.velocity(t, r.col(i));
+    const auto is = [&](const Vec2& candidate) { return (added - candidate).norm() <= 1e-12; };
+    const double c = wind.drag();
+    if (!is(c * (w - v.col(i)))) {
+      if (is(c * w))
+        UNSCOPED_INFO(
+            "the drag acts on the velocity relative to the wind, equation (5.3): "
+            "c (w - v_i), not c w");
+      else if (is(c * (v.col(i) - w)))
+        UNSCOPED_INFO(
+            "the drag pulls a particle towards the wind's velocity, equation (5.3): "
+            "c (w - v_i), not c (v_i - w)");
+      else if (is(c * (wind.velocity(t, Vec2::Zero()) - v.col(i))) ||
+               is(c * (wind.velocity(0.0, Vec2::Zero()) - v.col(i))))
+        UNSCOPED_INFO(
+            "the wind blows at each particle's own place and time, equation (5.4): "
+            "w(t, r_i), not w at the origin");
+    }
     CAPTURE(i);
     CHECK_THAT(Vec2(force.col(i)), IsNear(expected, 1e-12));
   }
@@ -238,6 +304,7 @@ TEST_CASE("Without wind a symmetric fabric moves symmetrically", "[task5][symmet
   const int rows = 5, cols = 6;
   SceneParameters p = small_fabric(rows, cols, "verlet");
   p.pinned = "top-corners";
+  check_gravity(p);
   Scene scene = build_scene(p, implementation());
   const double width = (cols - 1) * p.spacing;
   const auto mirror = [width](const Vec2& a) { return Vec2(width - a.x(), a.y()); };
@@ -274,6 +341,7 @@ TEST_CASE(
   p.bend.enabled = bend;
   p.structural.b = p.bend.b = 2.0;  // to settle in a few seconds
   p.wind.enabled = false;
+  check_gravity(p);
   Simulation sim(p, implementation());
   sim.advance(6000);
   // The drops u_1 … u_{rows-1} of the rows below the pinned one, from the balance of the

@@ -222,7 +222,9 @@ CriticalStep estimated_critical_step(std::string_view integrator, double frequen
   const double w = frequency_bound, c = damping_bound;
   const auto estimate = [](double h) { return CriticalStep{h, LimitSource::modal_estimate}; };
   if (integrator == "symplectic-euler") return estimate(symplectic_euler_mode_limit(w * w, c));
-  if (integrator == "verlet" || integrator == "velocity-verlet") return estimate(2.0 / w);
+  // 2/ω_max with ω_max ≤ ω_bound: a step that is certainly stable, not the limit itself.
+  if (integrator == "verlet" || integrator == "velocity-verlet")
+    return {2.0 / w, LimitSource::lower_bound};
   if (integrator == "rk4") return estimate(2.0 * std::sqrt(2.0) / w);
   if (integrator == "implicit-euler") return {infinity, LimitSource::no_limit};
   return {};  // explicit-euler: its limit hangs on each mode's damping ratio

@@ -1,5 +1,7 @@
 #include "springlab/diagnostics.hpp"
 
+#include <sstream>
+
 namespace springlab {
 
 double kinetic_energy(const Eigen::VectorXd& mass, const Vectors& v) {
@@ -52,6 +54,13 @@ Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& spri
   d.momentum = linear_momentum(particles.mass, particles.velocity);
   d.angular_momentum = angular_momentum(particles.mass, particles.position, particles.velocity);
   return d;
+}
+
+std::string energy_parts(const Diagnostics& d, bool gravity) {
+  std::ostringstream out;
+  out << "kinetic " << d.kinetic << ", potential " << d.all_potential();
+  if (gravity) out << " (springs " << d.potential << ", gravity " << d.gravitational << ")";
+  return out.str();
 }
 
 }  // namespace springlab

@@ -243,7 +243,9 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
         << " can take on this scene: some motion of it has no damping, and " << method
         << " makes an undamped motion grow at every h";
   } else {
-    const std::string estimate = c.source == LimitSource::modal_estimate ? "an estimate of " : "";
+    const std::string estimate = c.source == LimitSource::modal_estimate ? "an estimate of "
+                                 : c.source == LimitSource::lower_bound  ? "a lower bound of "
+                                                                         : "";
     if (d.step > c.step)
       out << " is " << number(d.step / c.step) << " times " << estimate << "the critical step "
           << number(c.step) << " s of " << method << " on this scene";

@@ -4,6 +4,7 @@
 #include "springlab/task5_fabric.hpp"
 #include "lab_testing.hpp"
 #include "springlab/this_implementation.hpp"
+#include "springlab/wind.hpp"
 
 #include <Eigen/Cholesky>
 
@@ -35,6 +36,26 @@ TEST_CASE(
   p.wind = {true, Vec2(1.0, 0.25), 6.0, 0.4, 0.0, 3.0, 1};
   p.pinned = "top-row";
   p.integrator = "verlet";
+  {  // Before any step, with v = 0: the wind adds c w / m to each free particle, (5.3).
+    SceneParameters calm = p;
+    calm.wind.enabled = false;
+    Simulation with(p, implementation()), without(calm, implementation());
+    const Vectors& r = with.particles().position;
+    const Vectors v = Vectors::Zero(2, r.cols());
+    const Vectors windy = with.acceleration(r, v), still = without.acceleration(r, v);
+    const WindField wind(p.wind);
+    for (int i = 1; i < rows; ++i) {
+      const Vec2 w = wind.velocity(0.0, r.col(i));
+      const Vec2 added = p.mass * Vec2(windy.col(i) - still.col(i));  // the wind's force, N
+      const double c = added.dot(w) / w.squaredNorm();                // the drag it acts with
+      CAPTURE(i, w, added, c, p.wind.drag);
+      if (std::abs(c - p.wind.drag) > 1e-9 && std::abs(c - WindParameters{}.drag) <= 1e-9)
+        UNSCOPED_INFO("the wind's drag is this wind's own c = wind.drag(), equation (5.3): here "
+                      << p.wind.drag << " N*s/m, but your force acts as if c were "
+                      << WindParameters{}.drag << " N*s/m, the lab's default");
+      REQUIRE_THAT(added, IsNear(p.wind.drag * w, 1e-9));
+    }
+  }
   Simulation sim(p, implementation());
   sim.advance(6000);
   const Vec2 load = p.mass * p.gravity.acceleration +

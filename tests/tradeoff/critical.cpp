@@ -164,6 +164,8 @@ std::string source_name(LimitSource source) {
       return "exact (bisection of the step matrix)";
     case LimitSource::modal_estimate:
       return "estimate (per mode, with each mode's own damping)";
+    case LimitSource::lower_bound:
+      return "lower bound (2/omega_bound: certainly stable, the limit is larger)";
     case LimitSource::no_limit:
       return "none";
     case LimitSource::not_computed:

@@ -2,21 +2,28 @@
 // simulation says, the panel answers real (synthetic) mouse input, switching anything does not
 // crash, a divergence and unwritten student code each show their banner.
 #include "gui/app.hpp"
+#include "gui/runs.hpp"
 #include "gui/scene_drawing.hpp"
+#include "springlab/diagnostics.hpp"
+#include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
+#include "springlab/stability.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <regex>
+#include <sstream>
 #include <string>
 
 namespace {
 
 using namespace springlab;
 using namespace springlab::view;
+using Catch::Matchers::WithinRel;
 
 AppOptions options_for(const std::string& scene) {
   AppOptions options;
@@ -117,6 +124,64 @@ TEST_CASE("each particle is drawn at the screen position of its simulated positi
   const Viewport& area = app.camera().viewport();
   const sf::Vector2f far(area.left + area.width - 5, area.top + area.height / 2);
   CHECK(text(pixel_at(app.captured(), far)) == text(colour::background));
+}
+
+TEST_CASE("the panel, the plots, the scene's label and the summary show one time and one energy",
+          "[viewer][draw]") {
+  // Each frame steps first and then draws: what the panel, the plots and the label read is the
+  // same state. Task 5 has gravity, whose energy counts in the potential of plots and summary.
+  App app(options_for("task5"));
+  app.session().parameters().rows = app.session().parameters().cols = 6;
+  app.session().apply();
+  for (int k = 0; k < 12; ++k) {
+    app.frame();
+    const Session& session = app.session();
+    const History& h = session.history();
+    CAPTURE(k, app.last_frame().steps, session.time(), app.panel().shown_time(), app.label_time());
+    REQUIRE(!h.time.empty());
+    CHECK(app.panel().shown_time() == session.time());
+    CHECK(app.label_time() == session.time());
+    // The plots' last point, as drawn and as kept.
+    CHECK(app.panel().shown_plot_time() == double(float(session.time())));
+    CHECK(h.time.back() == float(session.time()));
+  }
+  REQUIRE(app.session().time() > 0.0);
+  const Diagnostics d = app.session().primary()->diagnostics();
+  const History& h = app.session().history();
+  REQUIRE(d.gravitational != 0.0);  // it fell
+  CHECK(h.kinetic.back() == float(d.kinetic));
+  CHECK(h.potential.back() == float(d.potential + d.gravitational));
+  CHECK(h.total.back() == float(d.total()));
+  // The summary printed on stdout: the same t and energies (6 significant digits).
+  std::ostringstream out;
+  print_summary(app.session(), out);
+  const std::string text = out.str();
+  INFO(text);
+  std::smatch m;
+  REQUIRE(std::regex_search(
+      text, m,
+      std::regex(R"(t = ([-0-9.e]+) s; energy ([-0-9.e]+) J \(kinetic ([-0-9.e]+), potential )"
+                 R"(([-0-9.e]+) \(springs ([-0-9.e]+), gravity ([-0-9.e]+)\)\))")));
+  CHECK_THAT(std::stod(m[1]), WithinRel(app.session().time(), 1e-5));
+  CHECK_THAT(std::stod(m[2]), WithinRel(double(h.total.back()), 1e-5));
+  CHECK_THAT(std::stod(m[3]), WithinRel(double(h.kinetic.back()), 1e-5));
+  CHECK_THAT(std::stod(m[4]), WithinRel(double(h.potential.back()), 1e-5));
+  CHECK_THAT(std::stod(m[6]), WithinRel(d.gravitational, 1e-5));
+}
+
+TEST_CASE("the panel says whether its critical step is the limit or a safe step from a bound",
+          "[viewer][draw]") {
+  // Up to 100 particles an eigen-solve gives the limit; above, the bound on omega_max gives a
+  // step below it (handout section 5: 0.067 s on the 20x20 fabric, whose limit is 0.084 s).
+  Session small("task4"), large("task5");
+  REQUIRE(small.critical_step().has_value());
+  REQUIRE(large.critical_step().has_value());
+  CHECK_FALSE(small.critical_step_is_estimate());
+  CHECK(large.critical_step_is_estimate());
+  const double exact =
+      verlet_critical_step(linearise_at_rest(large.parameters(), reference_implementation()));
+  CAPTURE(*large.critical_step(), exact);
+  CHECK(*large.critical_step() < exact);
 }
 
 TEST_CASE("switching scenes, code, integrators, comparison and grid size never crashes",

@@ -188,6 +188,11 @@ void App::frame(bool capture) {
   glue_.new_frame(options_.fixed_frame_time ? 1.0f / 60.0f : float(info_.frame_seconds));
   layout();
   info_.hovered = hovered();
+  const double events = lap();
+  // Step first: the panel, the plots, the labels and the scene then all show the state after
+  // this frame's steps (one time, one set of energies), and a click in the panel shows at once.
+  info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
+  info_.stepping_seconds = phases.stepping = lap();
   Viewport scene_area = cameras_[0].viewport();
   scene_area.width *= float(views());
   const PanelRequests requests = panel_.draw(session_, settings_, info_, scene_area);
@@ -196,9 +201,7 @@ void App::frame(bool capture) {
     fit();
     fitted_to_ = session_.fresh_starts();
   }
-  phases.panel = lap();
-  info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
-  info_.stepping_seconds = phases.stepping = lap();
+  phases.panel = events + lap();
   draw_scenes();
   phases.scene = lap();
   draw_labels();
@@ -258,7 +261,8 @@ void App::draw_labels() {
   char label[32];
   std::snprintf(label, sizeof label, "%g m", metres);
   draw->AddText(ImVec2(left.x, left.y - 18), text, label);
-  std::snprintf(label, sizeof label, "t = %.2f s", session_.time());
+  label_time_ = session_.time();
+  std::snprintf(label, sizeof label, "t = %.2f s", label_time_);
   draw->AddText(ImVec2(area.left + 20, area.top + 10), text, label);
   if (views() == 2) {
     draw->AddText(ImVec2(area.left + 20, area.top + 30), text, "your code");

@@ -42,6 +42,8 @@ class App {
   /// The camera of view 0 (the chosen code) or view 1 (the reference, side by side).
   const Camera& camera(int view = 0) const { return cameras_[std::size_t(view)]; }
   const sf::Image& captured() const { return captured_; }
+  /// The time the scene's label showed in the last frame, s (the panel's: panel().shown_time()).
+  double label_time() const { return label_time_; }
   void fit();
 
  private:
@@ -68,7 +70,8 @@ class App {
   sf::Vector2f mouse_{-1.0f, -1.0f};
   bool panning_ = false;
   bool shift_ = false;
-  int fitted_to_ = -1;  // the session's fresh start the view was last fitted to
+  int fitted_to_ = -1;       // the session's fresh start the view was last fitted to
+  double label_time_ = 0.0;  // s, the time the label on the scene showed
 };
 
 }  // namespace springlab::view

@@ -140,7 +140,8 @@ void Panel::run_section(Session& session, PanelRequests& requests) {
   remember("reset");
   ImGui::SameLine();
   if (ImGui::Button("Fit view")) requests.fit = true;
-  ImGui::Text("t = %.3f s", session.time());
+  shown_time_ = session.time();
+  ImGui::Text("t = %.3f s", shown_time_);
 }
 
 void Panel::stepping_section(Session& session, const FrameInfo& frame) {
@@ -160,10 +161,22 @@ void Panel::stepping_section(Session& session, const FrameInfo& frame) {
       ImGui::TextColored(warning_colour, "critical step: none, unstable at every h");
     else if (std::isinf(*limit))
       ImGui::Text("critical step: none, stable at every h");
+    else if (session.critical_step_is_estimate() && p.step > *limit)
+      ImGui::TextColored(warning_colour, "h > %.4g s, the step known to be safe: it may blow up",
+                         *limit);
     else if (p.step > *limit)
       ImGui::TextColored(warning_colour, "h > critical step %.4g s: expect it to blow up", *limit);
+    else if (session.critical_step_is_estimate())
+      ImGui::Text("safe step %.4g s (h is %.0f%% of it)", *limit, 100 * p.step / *limit);
     else
       ImGui::Text("critical step %.4g s (h is %.0f%% of it)", *limit, 100 * p.step / *limit);
+    if (session.critical_step_is_estimate()) {
+      ImGui::PushStyleColor(ImGuiCol_Text, quiet_colour);
+      ImGui::TextWrapped(
+          "from a bound on omega_max (no eigen-solve above 100 particles): the critical step "
+          "itself is larger (handout section 5)");
+      ImGui::PopStyleColor();
+    }
   } else {
     ImGui::PushStyleColor(ImGuiCol_Text, quiet_colour);
     ImGui::TextWrapped("critical step %s", session.critical_step_note().c_str());
@@ -255,6 +268,7 @@ void Panel::plots(const Session& session, const Viewport& scene_area) {
       ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoBackground);
   remember_background();
   const History& h = session.history();
+  shown_plot_time_ = h.size() > 0 ? double(h.time.back()) : 0.0;
   ImGui::Columns(2, nullptr, false);
   ImGui::Text("energy over the last %.1f s",
               h.size() > 1 ? double(h.time.back() - h.time.front()) : 0.0);

@@ -63,6 +63,9 @@ class Panel {
   /// were 470,000 of the 740,000 pixels ImGui drew a frame: so ImGui leaves them out and this
   /// draws them as two plain rectangles. Call before rendering ImGui.
   void draw_backgrounds(sf::RenderTarget& target) const;
+  /// The time the panel showed in the last frame, s, and that of the plots' last point.
+  double shown_time() const { return shown_time_; }
+  double shown_plot_time() const { return shown_plot_time_; }
   /// Whether the banner (a problem) was shown in the last frame.
   bool banner_shown() const { return banner_shown_; }
 
@@ -77,6 +80,7 @@ class Panel {
   void remember(const std::string& name);
   void remember_background();
 
+  double shown_time_ = 0.0, shown_plot_time_ = 0.0;  // s
   ParameterWidgets parameters_;
   std::map<std::string, WidgetRect> rects_;
   std::vector<WidgetRect> backgrounds_;  // the windows drawn without ImGui's background

@@ -110,8 +110,8 @@ void print_summary(const Session& session, std::ostream& out) {
         << (task == 0 ? std::string("the reference")
                       : "your task " + std::to_string(task) + " code, the reference for the rest")
         << "; integrator " << p.integrator << ", h = " << p.step << " s, t = " << session.time()
-        << " s; energy " << d.total() << " J (kinetic " << d.kinetic << ", potential "
-        << d.potential << ")\n";
+        << " s; energy " << d.total() << " J ("
+        << energy_parts(d, sim->parameters().gravity.enabled) << ")\n";
   } else {
     out << "no simulation\n";
   }

@@ -50,7 +50,7 @@ Problem problem_of(Problem::Kind kind, std::string headline, std::string detail)
 void History::add(double t, const Diagnostics& d) {
   push_capped(time, t);
   push_capped(kinetic, d.kinetic);
-  push_capped(potential, d.potential + d.gravitational);
+  push_capped(potential, d.all_potential());  // springs and gravity, as summaries say
   push_capped(total, d.total());
   push_capped(momentum_x, d.momentum.x());
   push_capped(momentum_y, d.momentum.y());
@@ -278,6 +278,7 @@ std::optional<double> Session::critical_step() {
   if (key == critical_key_) return critical_;
   critical_key_ = key;
   critical_.reset();
+  critical_estimate_ = false;
   try {
     validate(parameters_);
     if (parameters_.rows * parameters_.cols <= critical_step_particle_limit) {
@@ -292,6 +293,7 @@ std::optional<double> Session::critical_step() {
       if (limit.integrator == parameters_.integrator &&
           limit.critical.source != LimitSource::not_computed)
         critical_ = limit.critical.step;
+    critical_estimate_ = critical_.has_value() && std::isfinite(*critical_) && *critical_ > 0.0;
     critical_note_ = critical_ ? ""
                                : "not estimated for this method above " +
                                      std::to_string(critical_step_particle_limit) + " particles";

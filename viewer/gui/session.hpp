@@ -111,6 +111,10 @@ class Session {
   /// h, infinity: stable at every h); empty when not estimated (large scene, unknown method).
   std::optional<double> critical_step();
   std::string critical_step_note() const { return critical_note_; }
+  /// Whether critical_step() is an estimate from the bound on ω_max (scenes above 100
+  /// particles, no eigen-solve) rather than the limit itself; for Verlet a step that is
+  /// certainly stable, below the exact 2/ω_max.
+  bool critical_step_is_estimate() const { return critical_estimate_; }
 
   // The user's hands on the particles; each applies to every running simulation.
   void grab(int particle);  ///< holds it still (pinned) until release()
@@ -145,6 +149,7 @@ class Session {
   bool grabbed_was_pinned_ = false;
   std::string critical_key_, critical_note_;
   std::optional<double> critical_;
+  bool critical_estimate_ = false;
 };
 
 }  // namespace springlab::view

@@ -33,7 +33,7 @@ void write_csv_row(std::ostream& out, const Simulation& simulation) {
   }
   const Diagnostics d = simulation.diagnostics();
   put(out, d.kinetic);
-  put(out, d.potential);
+  put(out, d.all_potential());  // springs and gravity, as the summary and the viewer say
   put(out, d.momentum.x());
   put(out, d.momentum.y());
   out << '\n';

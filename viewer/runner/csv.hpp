@@ -7,7 +7,8 @@
 
 namespace springlab {
 
-/// t, then x{i},y{i},vx{i},vy{i} for every particle i (0-based), then kinetic,potential,px,py.
+/// t, then x{i},y{i},vx{i},vy{i} for every particle i (0-based), then kinetic,potential,px,py
+/// (potential: springs and gravity together, as in the summary and the viewer's plot).
 void write_csv_header(std::ostream& out, int particles);
 
 /// One row for the simulation's current state; numbers in the shortest form that reads back

@@ -99,8 +99,8 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
       << "code: " << code_name(sim.implementation()) << "; integrator " << p.integrator
       << ", h = " << p.step << " s, " << sim.steps_taken() << " steps to t = " << sim.time()
       << " s\n"
-      << "energy " << start.total() << " J -> " << end.total() << " J (kinetic " << end.kinetic
-      << ", potential " << end.potential << "); momentum (" << end.momentum.x() << ", "
+      << "energy " << start.total() << " J -> " << end.total() << " J ("
+      << energy_parts(end, p.gravity.enabled) << "); momentum (" << end.momentum.x() << ", "
       << end.momentum.y() << ") kg*m/s\n"
       << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time\n";
 }
@@ -138,6 +138,8 @@ std::string_view how(LimitSource source) {
       return "exact (bisection)";
     case LimitSource::modal_estimate:
       return "estimate";
+    case LimitSource::lower_bound:
+      return "lower bound (2/bound)";
     case LimitSource::no_limit:
       return "no limit";
     case LimitSource::not_computed:
@@ -157,7 +159,8 @@ void print_stability_report(std::ostream& out, const SceneParameters& p,
   out << " bound " << report.frequency_bound << " rad/s (Gershgorin row sums of K/m)\n";
   if (!report.exact)
     out << "  (more than " << exact_particles_max
-        << " particles: no eigen-solves; the steps below are estimates from the bounds)\n";
+        << " particles: no eigen-solves; the steps below are estimates from the bounds, and "
+           "verlet's is a lower bound: the exact 2/omega_max is larger)\n";
   out << "  critical step h_c of each integrator, against h = " << p.step << " s:\n";
   for (const auto& [name, limit] : report.limits) {
     std::ostringstream value;

@@ -3,6 +3,7 @@
 
 #include "springlab/types.hpp"
 
+#include <string>
 #include <vector>
 
 namespace springlab {
@@ -35,7 +36,14 @@ struct Diagnostics {
   double angular_momentum = 0.0;  ///< about the origin, kg·m²/s
   /// Kinetic + spring + gravitational: constant without dampers, wind and pushes.
   double total() const { return kinetic + potential + gravitational; }
+  /// Spring + gravitational: what the viewer's energy plot calls "potential", J.
+  double all_potential() const { return potential + gravitational; }
 };
+
+/// "kinetic K, potential P" as the runner's and the viewer's summaries print it, J, with the
+/// potential named and summed as the viewer's plot does (springs and gravity together); with
+/// gravity on, "potential P (springs S, gravity G)".
+std::string energy_parts(const Diagnostics& d, bool gravity);
 
 Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs);
 
