@@ -71,8 +71,9 @@ class Grader {
   Grader(const Kit& kit, const std::vector<TestInfo>& tests, Settings settings);
 
   /// Grades the kit's own solutions with generous limits and keeps each test's time, for the
-  /// tasks being graded whose times `cache` lacks or whose programs changed since. Throws std::runtime_error when a
-  /// reference test fails: the kit is broken, and no submission could be graded fairly.
+  /// tasks being graded whose times `cache` lacks or whose programs changed since. Throws
+  /// std::runtime_error when a reference test fails: the kit is broken, and no submission could be
+  /// graded fairly.
   void calibrate(const fs::path& cache);
 
   /// Grades every submission. `task_done` is called as each task of a submission is finished
