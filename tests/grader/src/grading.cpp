@@ -419,10 +419,12 @@ class Grader::Pipeline {
       t.printed = o.output;
       t.printed_bytes = o.output_bytes;
       t.seconds = o.wall_seconds;
-      if (!t.passed) return settle(b);
+      // A crash is run again with the sanitizers, which can say what corrupted memory.
+      const bool crashed = !t.passed && t.message.rfind("crashed: ", 0) == 0;
+      if (!t.passed && !crashed) return settle(b);
       if (b->sanitized_ready) return run_sanitized(b, index);
-      // The sanitized library is built once a test has passed plainly: code that passes none
-      // needs none.
+      // The sanitized library is built once a test has passed plainly (or crashed): code that
+      // passes none needs none.
       if (b->passed_plain.empty() && !b->sanitized_started) {
         b->sanitized_started = true;
         build_sanitized(b);
@@ -433,7 +435,9 @@ class Grader::Pipeline {
 
   void run_sanitized(const std::shared_ptr<TaskBuild>& b, int index) {
     TestResult& plain = b->result.tests[std::size_t(index)];
+    const bool crashed = !plain.passed;  // plainly; it is here to be explained
     if (!b->sanitized_problem.empty()) {
+      if (crashed) return settle(b);
       plain.passed = false;
       plain.message = "passes, but the build with the sanitizers failed: " + b->sanitized_problem;
       return settle(b);
@@ -441,10 +445,25 @@ class Grader::Pipeline {
     Command c = test_command(*plain.test, kit_.sanitized, *b);
     const std::string secret = c.secret;
     const Limits limits = c.limits;
-    pool_.add(std::move(c), [this, b, index, secret, limits](Outcome o) {
+    pool_.add(std::move(c), [this, b, index, secret, limits, crashed](Outcome o) {
       TestResult& t = b->result.tests[std::size_t(index)];
       t.sanitized_seconds = o.wall_seconds;
       const RunVerdict v = judge(o, secret, limits, limits_text_);
+      if (crashed) {
+        // Explained only when the sanitizers name a memory error or a failed check.
+        const bool explained = v.message.rfind("memory error", 0) == 0 ||
+                               v.message.rfind("a check failed", 0) == 0 ||
+                               v.message.rfind("undefined behaviour", 0) == 0;
+        if (!v.passed && explained) {
+          t.message = t.message.substr(0, t.message.find('\n')) +
+                      "; run again with the sanitizers, which check every memory access: " +
+                      (g_.settings_.raw ? v.message : without_raw_lines(v.message));
+          t.printed = o.output;
+          t.printed_bytes = o.output_bytes;
+          if (!g_.settings_.raw) without_sanitizer_report(t);
+        }
+        return settle(b);
+      }
       if (!v.passed) {
         t.passed = false;
         t.message = "passes, but not with the sanitizers, which check every memory access: " +
@@ -460,10 +479,16 @@ class Grader::Pipeline {
   // The sanitizer's own report (its stack names the kit's tests and their lines) is for
   // instructors: the message has already said what it found and where in the student's code.
   static void without_sanitizer_report(TestResult& t) {
+    // AddressSanitizer's report starts with a banner, UndefinedBehaviorSanitizer's with the line
+    // "FILE:LINE:COLUMN: runtime error: ...".
     const std::string banner =
         "=================================================================\n==";
-    const auto at = t.printed.find(banner);
+    auto at = std::min(t.printed.find(banner), t.printed.find(": runtime error: "));
     if (at == std::string::npos) return;
+    if (t.printed.compare(at, 2, ": ") == 0) {
+      const auto line = t.printed.rfind('\n', at);
+      at = line == std::string::npos ? 0 : line + 1;
+    }
     t.printed.resize(at);
     t.printed_bytes = std::min(t.printed_bytes, at);
   }
