@@ -2,6 +2,7 @@
 // and the symbol rule.
 #include "checks.hpp"
 
+#include <unistd.h>
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -12,9 +13,12 @@ namespace {
 
 // A kit laid out as the real one, in a temporary folder.
 struct FakeKit {
-  fs::path top = fs::temp_directory_path() / "springlab-checks-test";
+  fs::path top = fs::temp_directory_path() / ("springlab-checks-test-" + std::to_string(getpid()));
   Kit kit;
   fs::path copy = top / "work" / "tasks" / "task1_two_masses";
+  ~FakeKit() { fs::remove_all(top); }
+  FakeKit(const FakeKit&) = delete;
+  FakeKit& operator=(const FakeKit&) = delete;
   FakeKit() {
     fs::remove_all(top);
     kit.root = top / "kit";
@@ -30,7 +34,8 @@ struct FakeKit {
 }  // namespace
 
 TEST_CASE("Dependency files: continued lines, escaped spaces and the target left out", "[checks]") {
-  const fs::path file = fs::temp_directory_path() / "springlab-deps-test.d";
+  const fs::path file =
+      fs::temp_directory_path() / ("springlab-deps-test-" + std::to_string(getpid()) + ".d");
   std::ofstream(file) << "/w/obj.o: /w/a.cpp /usr/include/x.h \\\n /w/my\\ header.hpp\n";
   const std::vector<fs::path> files = read_dependencies(file);
   REQUIRE(files.size() == 3);

@@ -2,6 +2,7 @@
 #include "points.hpp"
 #include "submission.hpp"
 
+#include <unistd.h>
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -19,7 +20,8 @@ const std::string listing =
     "[task2][momentum]\tGrid: momentum\n";
 
 fs::path write_points(const std::string& text) {
-  const fs::path file = fs::temp_directory_path() / "springlab-points-test.toml";
+  const fs::path file =
+      fs::temp_directory_path() / ("springlab-points-test-" + std::to_string(getpid()) + ".toml");
   std::ofstream(file) << text;
   return file;
 }
@@ -76,7 +78,7 @@ TEST_CASE("Points: mistakes in the file are named with the value and what is all
              Catch::Contains("task1.default = 1e+308: allowed a number of points from 0 to"));
   CHECK_THAT(rejection(tests, "[task9]\ndefault = 1\n"),
              Catch::Contains("[task9]: allowed sections are [task1] ... [task5]"));
-  CHECK_THAT(rejection(tests, "[task1\n"), Catch::Contains("springlab-points-test.toml:1"));
+  CHECK_THAT(rejection(tests, "[task1\n"), Catch::Contains(".toml:1"));
 }
 
 namespace {

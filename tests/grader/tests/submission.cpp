@@ -1,6 +1,7 @@
 // Finding a submission's files in any of its three shapes, and the private copy that is compiled.
 #include "submission.hpp"
 
+#include <unistd.h>
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -10,8 +11,12 @@ using namespace springlab::grader;
 namespace {
 
 struct Folders {
-  fs::path top = fs::temp_directory_path() / "springlab-submission-test";
+  fs::path top =
+      fs::temp_directory_path() / ("springlab-submission-test-" + std::to_string(getpid()));
   Kit kit;
+  ~Folders() { fs::remove_all(top); }
+  Folders(const Folders&) = delete;
+  Folders& operator=(const Folders&) = delete;
   Folders() {
     fs::remove_all(top);
     kit.starter = top / "kit" / "tasks";
