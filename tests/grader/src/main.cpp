@@ -10,10 +10,15 @@
 
 #include <CLI/CLI.hpp>
 
+#include <fcntl.h>
 #include <sched.h>
+#include <sys/file.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <set>
@@ -38,20 +43,34 @@ struct Options {
 };
 
 // Empties `folder` for a new run, refusing any folder this program did not make: nothing of an
-// earlier run survives, and nothing else is ever deleted.
+// earlier run survives, and nothing else is ever deleted. The folder's marker stays, locked until
+// this process ends: a second springlab-grade given the same folder is refused instead of emptying
+// it under the first one's feet (two terminals, or two tests at once, with one --work).
 void prepare(const fs::path& folder) {
   std::error_code error;
-  if (fs::exists(folder)) {
-    if (!fs::is_directory(folder))
-      throw UsageError(folder.string() + " exists and is not a folder");
-    if (!fs::is_empty(folder) && !fs::exists(folder / marker))
-      throw UsageError(folder.string() + " holds files springlab-grade did not write: choose " +
-                       "another folder, or empty it yourself");
-    fs::remove_all(folder, error);
+  if (fs::exists(folder) && !fs::is_directory(folder))
+    throw UsageError(folder.string() + " exists and is not a folder");
+  if (fs::exists(folder) && !fs::is_empty(folder) && !fs::exists(folder / marker))
+    throw UsageError(folder.string() + " holds files springlab-grade did not write: choose " +
+                     "another folder, or empty it yourself");
+  fs::create_directories(folder, error);
+  if (error) throw UsageError("cannot make " + folder.string() + ": " + error.message());
+  const fs::path mark = folder / marker;
+  // Kept open (and locked) for the rest of the run; close-on-exec, so no test process holds it.
+  const int lock = open(mark.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock < 0)
+    throw UsageError("cannot write in " + folder.string() + ": " + std::strerror(errno));
+  if (flock(lock, LOCK_EX | LOCK_NB) != 0)
+    throw UsageError(folder.string() + " is in use by another springlab-grade run: wait for it " +
+                     "to end, or give this run another --out or --work folder");
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    if (entry.path().filename() == marker) continue;
+    fs::remove_all(entry.path(), error);
     if (error) throw UsageError("cannot empty " + folder.string() + ": " + error.message());
   }
-  fs::create_directories(folder);
-  std::ofstream(folder / marker) << "written by springlab-grade, emptied by its next run\n";
+  const std::string text = "written by springlab-grade, emptied by its next run\n";
+  if (ftruncate(lock, 0) != 0 || write(lock, text.data(), text.size()) != ssize_t(text.size()))
+    throw UsageError("cannot write in " + folder.string() + ": " + std::strerror(errno));
 }
 
 // The processors this process may use: its affinity mask, and a container's CPU quota (a
