@@ -2,6 +2,8 @@
 // theory. Runs against the reference only (tag [core]); students never edit any of it.
 #include "lab_testing.hpp"
 #include "springlab/errors.hpp"
+#include "springlab/integrator.hpp"
+#include "springlab/memory_budget.hpp"
 #include "springlab/scene_file.hpp"
 #include "springlab/stability.hpp"
 #include "springlab/this_implementation.hpp"
@@ -57,7 +59,7 @@ TEST_CASE("Parameters: grids smaller than 1x2 or too large for memory are reject
   p.rows = 1, p.cols = 1;
   CHECK_THAT(rejection([&] { validate(p); }), Contains("rows x cols = 1 x 1"));
   p.rows = max_grid_side, p.cols = max_grid_side;
-  CHECK_THAT(rejection([&] { validate(p); }), Contains("fit in half of this machine's memory"));
+  CHECK_THAT(rejection([&] { validate(p); }), Contains("MiB with explicit-euler; the limit is"));
   p.rows = 2, p.cols = 1;  // a column of two is fine
   p.displaced = "1";
   CHECK_NOTHROW(validate(p));
@@ -126,7 +128,7 @@ TEST_CASE("Scene files: values, and errors with the file, the line and the key",
     file << "rows = \"3\"\n";
   }
   CHECK_THAT(rejection([&] { load_scene_file(path); }),
-             Contains(path + ":1: rows = '3' (a string): expected a whole number"));
+             Contains(path + ":1: rows = \"3\" (a string): expected a whole number"));
   {
     std::ofstream file(path);
     file << "task = 2\nrows = 2\ncols = 2\ndisplaced = \"7\"\n";
@@ -290,4 +292,45 @@ TEST_CASE("Edits from outside: a moved particle restarts the integrator, a pinne
   sim.advance(10);
   CHECK(sim.particles().position.col(0) != at);
   CHECK_THAT(rejection([&] { sim.set_pinned(9, true); }), Contains("particle = 9"));
+}
+
+TEST_CASE("Memory guard: each integrator's estimate against an injected limit", "[core][memory]") {
+  // Issue 13: the guard assumed 1 KB a particle of physical memory; implicit Euler's fallback
+  // takes about 8.4 KB a particle (1.34 GB at 400x400) and ulimit -v was ignored.
+  SceneParameters p = task_scene(5);
+  p.rows = p.cols = 400;
+  p.integrator = "implicit-euler";
+  const double implicit = estimated_bytes(p);
+  CHECK(implicit >= 1.2e9);  // measured 1.34 GB at 400x400 (issue 13)
+  for (const std::string& method : integrator_names()) {
+    p.integrator = method;
+    CAPTURE(method);
+    CHECK(estimated_bytes(p) <= implicit);
+    CHECK(estimated_bytes(p) >= 160000 * 500.0);  // measured 0.62 KiB a particle with RK4
+  }
+  const MemoryLimit limit{400.0 * 1024 * 1024, "ulimit -v"};
+  p.rows = p.cols = 1000;
+  p.integrator = "explicit-euler";
+  try {
+    check_memory(p, limit);
+    FAIL("a 1000 x 1000 grid passed a 400 MiB limit");
+  } catch (const InvalidParameter& error) {
+    const std::string text = error.what();
+    CHECK_THAT(text, Contains("rows x cols"));
+    CHECK_THAT(text, Contains("1000 x 1000"));
+    CHECK_THAT(text, Contains("MiB with explicit-euler; the limit is 400 MiB (ulimit -v)"));
+  }
+  p.rows = p.cols = 20;
+  CHECK_NOTHROW(check_memory(p, limit));
+  p.rows = p.cols = 200;
+  p.integrator = "implicit-euler";  // about 300 MiB with its factorisation: fits
+  CHECK_NOTHROW(check_memory(p, limit));
+  p.rows = p.cols = 300;  // about 700 MiB: refused
+  CHECK_THROWS_AS(check_memory(p, limit), InvalidParameter);
+}
+
+TEST_CASE("Memory guard: the process's limit is found", "[core][memory]") {
+  const MemoryLimit limit = available_memory();
+  CHECK(limit.bytes > 0);
+  CHECK_FALSE(limit.source.empty());
 }

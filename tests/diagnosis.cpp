@@ -336,3 +336,23 @@ TEST_CASE(
   CHECK(none.replayed == 0.0);
   CHECK_THAT(none.words, Contains("not replayed") && Contains("4 particles"));
 }
+
+TEST_CASE("Diagnosis: the wind's explicit drag, not implicit Euler, limits h on light masses",
+          "[diagnosis][wind]") {
+  // Issue 13: with mass = 1e-12 kg implicit Euler was blamed, although the wind's drag (explicit
+  // in every integrator) diverged: a motion it alone damps needs h < 2 m / c.
+  SceneParameters p = task_scene(5);
+  p.mass = 1e-12;
+  p.integrator = "implicit-euler";
+  const double drag_limit = 2.0 * p.mass / p.wind.drag;
+  Simulation sim(p, implementation());
+  const std::optional<DivergenceError> error = run_to_divergence(sim, 100);
+  REQUIRE(error);
+  const std::string words = error->what();
+  CAPTURE(words);
+  CHECK_THAT(words, Contains("set by the wind's drag"));
+  CHECK_THAT(words, Contains("h < 2 m / c"));
+  CHECK_THAT(words, Contains(number(drag_limit) + " s"));
+  CHECK_THAT(words, Contains("another integrator does not help"));
+  CHECK(critical_step_at_rest(p) <= 1.01 * drag_limit);
+}

@@ -21,7 +21,7 @@ constexpr double infinity = std::numeric_limits<double>::infinity();
 // complement is invariant under both (they are symmetric), so the deformation modes keep their
 // dynamics exactly.
 struct Deformation {
-  Eigen::MatrixXd k, c;
+  Eigen::MatrixXd k, c, drag;  // drag: the share of c that the external forces give
 };
 
 Deformation deformation_modes(const LinearModel& model) {
@@ -35,7 +35,11 @@ Deformation deformation_modes(const LinearModel& model) {
   for (Eigen::Index i = 0; i < values.size(); ++i)
     if (values[i] > threshold) kept.push_back(i);
   const Eigen::MatrixXd basis = solver.eigenvectors()(Eigen::all, kept);
-  return {basis.transpose() * k * basis, basis.transpose() * c * basis};
+  Eigen::MatrixXd drag = Eigen::MatrixXd::Zero(k.rows(), k.cols());
+  if (model.drag.size() == model.mass.size())
+    drag.diagonal() = model.drag.cwiseProduct(scale.cwiseAbs2());
+  return {basis.transpose() * k * basis, basis.transpose() * c * basis,
+          basis.transpose() * drag * basis};
 }
 
 // One step of each method applied to (x, v) of x'' = -K x - C v (unit masses), as a matrix.
@@ -66,14 +70,18 @@ Eigen::MatrixXd step_matrix_of(const Deformation& d, std::string_view integrator
     Eigen::MatrixXd x(n, 2 * n);  // r_{n+1}
     x << id, Eigen::MatrixXd::Zero(n, n);
     x += h * half;
-    // (I + hC/2) v_{n+1} = v_{n+1/2} - h/2 K r_{n+1}
-    s << x,
-        Eigen::PartialPivLU<Eigen::MatrixXd>(id + 0.5 * h * d.c).solve(half - 0.5 * h * d.k * x);
-  } else if (integrator == "implicit-euler") {  // (I + hC + h²K) v' = v - hK x, x' = x + h v'
+    Eigen::MatrixXd predicted(n, 2 * n);  // v* = v_{n+1/2} + h/2 a_n, where the drag is taken
+    predicted << -0.5 * h * d.k, -0.5 * h * d.c;
+    predicted += half;
+    // (I + h/2 (C - D)) v_{n+1} = v_{n+1/2} - h/2 K r_{n+1} - h/2 D v*: dampers implicit, drag not
+    s << x, Eigen::PartialPivLU<Eigen::MatrixXd>(id + 0.5 * h * (d.c - d.drag))
+                .solve(half - 0.5 * h * d.k * x - 0.5 * h * d.drag * predicted);
+  } else if (integrator == "implicit-euler") {
+    // (I + h(C - D) + h²K) v' = v - hK x - hD v, x' = x + h v': the drag D is explicit
     Eigen::MatrixXd rhs(n, 2 * n);
-    rhs << -h * d.k, id;
+    rhs << -h * d.k, id - h * d.drag;
     const Eigen::MatrixXd v =
-        Eigen::PartialPivLU<Eigen::MatrixXd>(id + h * d.c + h * h * d.k).solve(rhs);
+        Eigen::PartialPivLU<Eigen::MatrixXd>(id + h * (d.c - d.drag) + h * h * d.k).solve(rhs);
     Eigen::MatrixXd x(n, 2 * n);
     x << id, Eigen::MatrixXd::Zero(n, n);
     s << x + h * v, v;
@@ -137,6 +145,16 @@ int free_particles(const LinearModel& model) {
   return int(model.mass.size() / 2);
 }
 
+bool has_drag(const LinearModel& model) {
+  return model.drag.size() > 0 && model.drag.maxCoeff() > 0.0;
+}
+
+// 2 m / c of the lightest particle: the limit of a motion that the drag alone damps, taken
+// explicitly (|1 - h c/m| <= 1).
+double drag_limit(const LinearModel& model) {
+  return 2.0 / model.drag.cwiseQuotient(model.mass).maxCoeff();
+}
+
 }  // namespace
 
 Eigen::MatrixXd step_matrix(const LinearModel& model, std::string_view integrator, double h) {
@@ -148,13 +166,16 @@ double step_growth_factor(const LinearModel& model, std::string_view integrator,
 }
 
 double critical_step_by_bisection(const LinearModel& model, std::string_view integrator) {
-  if (integrator == "implicit-euler") return infinity;
+  if (integrator == "implicit-euler" && !has_drag(model)) return infinity;
   const Deformation modes = deformation_modes(model);
   const auto stable = [&](double h) {
     return spectral_radius(step_matrix_of(modes, integrator, h)) <= 1.0 + 1e-9;
   };
-  // Bracket from 2/ω_max, the scale of every explicit method's limit, by doubling or halving.
-  double hi = 2.0 / std::max(highest_frequency(model), 1e-300);
+  // Bracket from 2/max(ω_max, c_max), the scale of every explicit method's limit (the springs'
+  // or, when damping dominates, the dampers'), by doubling or halving.
+  const double rate = std::max(highest_frequency(model), fastest_damping_rate(model));
+  if (rate == 0.0) return infinity;  // nothing acts on a deformation
+  double hi = 2.0 / rate;
   int doublings = 0;
   while (stable(hi))
     if (hi *= 2.0; ++doublings > 60) return infinity;
@@ -174,12 +195,21 @@ CriticalStep critical_step_of(const LinearModel& model, std::string_view integra
   if (model.mass.size() == 0) return {infinity, LimitSource::no_limit};  // all pinned
   if (integrator == "explicit-euler")
     return {explicit_euler_critical_step(model), LimitSource::exact_formula};
-  if (integrator == "verlet" || integrator == "velocity-verlet")
-    return {verlet_critical_step(model), LimitSource::exact_formula};
+  if (integrator == "verlet")
+    return {std::min(verlet_critical_step(model), verlet_iteration_limit(model)),
+            LimitSource::exact_formula};
   if (integrator == "rk4")
     return {polynomial_critical_step(deforming_eigenvalues(model), "rk4"),
             LimitSource::exact_formula};
-  if (integrator == "implicit-euler") return {infinity, LimitSource::no_limit};
+  if (integrator == "velocity-verlet" || integrator == "implicit-euler") {
+    // Only an explicit drag limits them beyond the springs' 2/ω_max (velocity Verlet).
+    const double springs = integrator == "implicit-euler" ? infinity : verlet_critical_step(model);
+    if (!has_drag(model))
+      return {springs, std::isinf(springs) ? LimitSource::no_limit : LimitSource::exact_formula};
+    if (free_particles(model) <= bisection_particles_max)
+      return {critical_step_by_bisection(model, integrator), LimitSource::bisection};
+    return {std::min(springs, drag_limit(model)), LimitSource::modal_estimate};
+  }
   if (integrator == "symplectic-euler") {
     if (free_particles(model) <= bisection_particles_max)
       return {critical_step_by_bisection(model, integrator), LimitSource::bisection};
@@ -218,15 +248,24 @@ double polynomial_growth_factor(const std::vector<std::complex<double>>& lambda,
 }
 
 CriticalStep estimated_critical_step(std::string_view integrator, double frequency_bound,
-                                     double damping_bound) {
+                                     double damping_bound, double drag_rate) {
   const double w = frequency_bound, c = damping_bound;
   const auto estimate = [](double h) { return CriticalStep{h, LimitSource::modal_estimate}; };
+  // 2m/c of the drag, explicit in every method (|1 - h c/m| <= 1 for a motion it alone damps).
+  const double drag = drag_rate > 0.0 ? 2.0 / drag_rate : infinity;
   if (integrator == "symplectic-euler") return estimate(symplectic_euler_mode_limit(w * w, c));
-  // 2/ω_max with ω_max ≤ ω_bound: a step that is certainly stable, not the limit itself.
-  if (integrator == "verlet" || integrator == "velocity-verlet")
+  if (integrator == "verlet") {
+    // 2/ω_max with ω_max ≤ ω_bound: a step that is certainly stable, not the limit itself;
+    // the iteration's limit 2q/c_max with c_max ≤ c likewise.
+    return {std::min(2.0 / w, 2.0 * verlet_iteration_factor() / c), LimitSource::lower_bound};
+  }
+  if (integrator == "velocity-verlet") {
+    if (drag < 2.0 / w) return estimate(drag);
     return {2.0 / w, LimitSource::lower_bound};
-  if (integrator == "rk4") return estimate(2.0 * std::sqrt(2.0) / w);
-  if (integrator == "implicit-euler") return {infinity, LimitSource::no_limit};
+  }
+  if (integrator == "rk4") return estimate(std::min(2.0 * std::sqrt(2.0) / w, rk4_reach(-1.0) / c));
+  if (integrator == "implicit-euler")
+    return std::isinf(drag) ? CriticalStep{infinity, LimitSource::no_limit} : estimate(drag);
   return {};  // explicit-euler: its limit hangs on each mode's damping ratio
 }
 
@@ -251,10 +290,10 @@ StabilityReport stability_report(const SceneParameters& p, const Implementation&
     return report;
   }
   // Too large for eigen-solves: lower estimates from the bounds.
-  double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
-  if (p.wind.enabled) c += p.wind.drag / particles.mass.minCoeff();  // the drag to the air
+  const double drag = p.wind.enabled ? p.wind.drag / particles.mass.minCoeff() : 0.0;
+  const double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned) + drag;
   for (const std::string& name : integrator_names())
-    report.limits.push_back({name, estimated_critical_step(name, report.frequency_bound, c)});
+    report.limits.push_back({name, estimated_critical_step(name, report.frequency_bound, c, drag)});
   return report;
 }
 

@@ -214,6 +214,23 @@ std::string spring_list_equations(const SceneParameters& p) {
   return list;
 }
 
+// When the wind's drag, not the springs, sets the critical step: every method takes the drag
+// c (w - v) explicitly (implicit Euler and velocity Verlet too), so a motion it alone damps
+// grows once h > 2 m / c whatever the springs' method.
+std::string drag_words(const Scene& scene, const CriticalStep& c) {
+  const SceneParameters& p = scene.parameters;
+  if (!p.wind.enabled || p.wind.drag <= 0 || c.source == LimitSource::not_computed) return "";
+  const double m = scene.particles.mass.minCoeff();
+  const double limit = 2.0 * m / p.wind.drag;
+  if (!(limit <= 1.01 * c.step)) return "";
+  std::ostringstream out;
+  out << "; it is set by the wind's drag c (w - v), not by the springs: " << p.integrator
+      << " takes the drag explicitly (external forces are explicit in every integrator), and a "
+         "motion the drag alone damps grows unless h < 2 m / c = 2 * "
+      << number(m) << " kg / " << number(p.wind.drag) << " N*s/m = " << number(limit) << " s";
+  return out.str();
+}
+
 // "h = 0.01 s is 2 times the critical step 0.005 s of explicit Euler on this scene" and the like.
 std::string step_comparison(const Diagnosis& d, const Scene& scene) {
   const std::string_view integrator = scene.parameters.integrator;
@@ -255,6 +272,7 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
   }
   if (!std::isnan(d.growth) && d.step > c.step)
     out << " (each step multiplies its fastest-growing motion by " << number(d.growth, 4) << ")";
+  out << drag_words(scene, c);
   return out.str();
 }
 
@@ -274,7 +292,7 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
   const Vectors rest = rest_positions(scene);
   if (particles.size() <= budget.exact_particles) {  // as stability_report decides
     LinearModel model = linearise(scene.springs, rest, particles.mass, particles.pinned);
-    if (p.wind.enabled) model.damping.diagonal().array() += p.wind.drag;
+    if (p.wind.enabled) add_drag(model, p.wind.drag);
     if (p.integrator == "explicit-euler" || p.integrator == "rk4") {  // one eigen-solve for both
       const auto lambda = deforming_eigenvalues(model);
       const double critical = polynomial_critical_step(lambda, p.integrator);
@@ -289,8 +307,8 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
   }
   const double w = highest_frequency_bound(scene.springs, rest, particles.mass, particles.pinned);
   double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
-  if (p.wind.enabled) c += p.wind.drag / particles.mass.minCoeff();
-  return estimated_critical_step(p.integrator, w, c);
+  const double drag_rate = p.wind.enabled ? p.wind.drag / particles.mass.minCoeff() : 0.0;
+  return estimated_critical_step(p.integrator, w, c + drag_rate, drag_rate);
 }
 
 Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, double start_time,
@@ -592,7 +610,10 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       sentence[0] = char(std::toupper(sentence[0]));
       words << sentence;
     }
-    if (d.critical.step > 0)
+    if (d.critical.step > 0 && !drag_words(start, d.critical).empty())
+      words << "Make h smaller than " << number(d.critical.step)
+            << " s, or wind.drag smaller or the mass larger: another integrator does not help.";
+    else if (d.critical.step > 0)
       words << "Make h smaller than " << number(d.critical.step)
             << " s, or choose an integrator with a larger critical step (springlab-run "
                "--stability lists them).";

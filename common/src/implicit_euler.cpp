@@ -41,6 +41,7 @@ class ImplicitEuler final : public Integrator {
     guess_.resize(2, 0);
     previous_.resize(2, 0);
   }
+  SolverWork solver_work() const override { return {cg_.products, factorisations_}; }
 
  private:
   // S = hb I + h²B of one spring, symmetric: what the spring adds to A's pp and qq blocks and
@@ -75,6 +76,7 @@ class ImplicitEuler final : public Integrator {
   std::vector<std::array<Eigen::Index, 16>> slots_;  // per spring: its K entries, -1 if pinned
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> direct_;
   bool analysed_ = false;
+  long factorisations_ = 0;
 };
 
 void ImplicitEuler::prepare(const Model& model) {
@@ -206,6 +208,7 @@ Vectors ImplicitEuler::solve_directly(const Model& model, const Vectors& r, doub
   }
   if (!analysed_) direct_.analyzePattern(matrix_), analysed_ = true;
   direct_.factorize(matrix_);
+  ++factorisations_;
   if (direct_.info() != Eigen::Success)
     throw StepFailed("the implicit step's matrix M + hC + h^2 K could not be factorised");
   Eigen::VectorXd free_b(2 * free_.size());
@@ -247,7 +250,8 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
       solution_.setZero(2, rhs_.cols());
     }
     const auto product = [&](const Vectors& x, Vectors& ax) { multiply(model, x, ax); };
-    if (!conjugate_gradients(product, inverse_diagonal_, rhs_, solution_, 1e-12, 100, cg_))
+    if (!conjugate_gradients(product, inverse_diagonal_, rhs_, solution_, implicit_euler_tolerance,
+                             100, cg_))
       solution_ = solve_directly(model, r, h, rhs_);
     solution_ *= scale;
   }

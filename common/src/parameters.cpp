@@ -2,6 +2,8 @@
 
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
+#include "springlab/memory_budget.hpp"
+#include "springlab/scene_text.hpp"
 #include "springlab/selection.hpp"
 
 #include <unistd.h>
@@ -22,18 +24,12 @@ std::string number(double x) {
   return error == std::errc{} ? std::string(text, end) : std::string("?");
 }
 
-std::string with_unit(double x, std::string_view unit) {
-  return unit.empty() ? number(x) : number(x) + " " + std::string(unit);
+std::string unit_after(std::string text, std::string_view unit) {
+  return unit.empty() ? text : text + " " + std::string(unit);
 }
 
-// A rough upper bound of what one particle costs with its springs, integrator copies and the
-// model's buffers, to refuse grids that cannot fit before allocating them.
-constexpr double bytes_per_particle = 1024.0;
-
-double physical_memory_bytes() {
-  const long pages = sysconf(_SC_PHYS_PAGES);
-  const long page = sysconf(_SC_PAGE_SIZE);
-  return pages > 0 && page > 0 ? double(pages) * double(page) : 8.0 * (1ull << 30);
+std::string with_unit(double x, std::string_view unit) {
+  return unit_after(number(x), unit);
 }
 
 int edit_distance(std::string_view a, std::string_view b) {
@@ -51,19 +47,98 @@ int edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
+// `written` is the value as the user wrote it, quoted in the message instead of a re-printed
+// double (which would show 9223372036854775807 as 9223372036854775808).
 template <class T>
-void check_range(const FieldInfo& info, const T& value) {
+void check_range(const FieldInfo& info, const T& value, std::string_view written) {
   if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
     if (!info.range.contains(double(value)))
-      throw InvalidParameter(std::string(info.key), with_unit(double(value), info.unit),
+      throw InvalidParameter(std::string(info.key), unit_after(std::string(written), info.unit),
                              "allowed " + info.range.describe(info.key, info.unit));
   }
+}
+
+template <class T>
+void check_range(const FieldInfo& info, const T& value) {
+  if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>)
+    check_range(info, value, number(double(value)));
 }
 
 bool parse_bool(std::string_view text, bool& out) {
   if (text == "true" || text == "on" || text == "1") return out = true, true;
   if (text == "false" || text == "off" || text == "0") return out = false, true;
   return false;
+}
+
+// The keys of the table `name` ("shear"), e.g. "shear.enabled, shear.k, shear.b".
+std::string keys_in(std::string_view name) {
+  const SceneParameters probe;
+  std::string list;
+  for_each_field(probe, [&](const FieldInfo& info, auto&) {
+    if (info.key.substr(0, name.size() + 1) == std::string(name) + ".")
+      list += (list.empty() ? "" : ", ") + std::string(info.key);
+  });
+  return list;
+}
+
+// The plain keys and the tables, e.g. "name, task, rows, ... and structural.*, shear.*, ...".
+std::string overview() {
+  const SceneParameters probe;
+  std::string keys, tables;
+  for_each_field(probe, [&](const FieldInfo& info, auto&) {
+    const auto dot = info.key.find('.');
+    if (dot == std::string_view::npos) {
+      keys += (keys.empty() ? "" : ", ") + std::string(info.key);
+      return;
+    }
+    const std::string table = std::string(info.key.substr(0, dot)) + ".*";
+    if (tables.find(table) == std::string::npos) tables += (tables.empty() ? "" : ", ") + table;
+  });
+  return keys + " and " + tables;
+}
+
+// Parses a whole number or a real as from_chars does (no '+', no spaces, nothing after it);
+// NaN and infinities come back as parsed, for the range check to refuse them as written.
+bool parse_number(std::string_view text, double& out) {
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return error == std::errc{} && end == text.data() + text.size();
+}
+
+// One field from text. Messages show the value as `written`, in quotes if `quote` (--set's
+// text; a scene file's own text shows its quotes itself).
+template <class T>
+void set_field(const FieldInfo& info, T& value, std::string_view text, std::string_view written,
+               bool quote) {
+  const std::string key(info.key);
+  const std::string shown = quote ? "\"" + std::string(written) + "\"" : std::string(written);
+  if constexpr (std::is_same_v<T, std::string>) {
+    if (text.empty())
+      throw InvalidParameter(key, shown, "an empty text; expected " + std::string(info.meaning));
+    // A terminal obeys control characters (ESC starts a command): never store or print them.
+    if (has_control_character(text))
+      throw InvalidParameter(key, shown,
+                             "control characters (such as ESC or a line end) are not allowed");
+    value = std::string(text);
+  } else if constexpr (std::is_same_v<T, bool>) {
+    if (!parse_bool(text, value)) throw InvalidParameter(key, shown, "true or false");
+  } else {
+    double parsed = 0.0;
+    if (!parse_number(text, parsed))
+      throw InvalidParameter(key, shown, "a number: " + info.range.describe(info.key, info.unit));
+    check_range(info, parsed, written);  // a number as written, e.g. -3 N/m
+    value = static_cast<T>(parsed);
+  }
+}
+
+void set_parameter_shown(SceneParameters& p, std::string_view key, std::string_view text,
+                         std::string_view written, bool quote) {
+  bool found = false;
+  for_each_field(p, [&](const FieldInfo& info, auto& value) {
+    if (info.key != key) return;
+    found = true;
+    set_field(info, value, text, written, quote);
+  });
+  if (!found) throw InvalidParameter(printable(key), std::string(written), unknown_key(key));
 }
 
 }  // namespace
@@ -89,13 +164,8 @@ void validate(const SceneParameters& p) {
   if (particles < 2)
     throw InvalidParameter("rows x cols", std::to_string(p.rows) + " x " + std::to_string(p.cols),
                            "a grid needs at least 2 particles (1 x 2 or larger)");
-  const double available = physical_memory_bytes() / 2;
-  if (particles * bytes_per_particle > available)
-    throw InvalidParameter(
-        "rows x cols", std::to_string(p.rows) + " x " + std::to_string(p.cols),
-        "it needs about " + number(std::round(particles * bytes_per_particle / (1 << 20))) +
-            " MiB; at most " + number(std::floor(available / bytes_per_particle)) +
-            " particles fit in half of this machine's memory");
+  // Before anything of the grid is allocated (select_particles lists particles, too).
+  check_memory(p, available_memory());
   select_particles("pinned", p.pinned, p.rows, p.cols);
   select_particles("displaced", p.displaced, p.rows, p.cols);
   select_particles("pushed", p.pushed, p.rows, p.cols);
@@ -115,7 +185,7 @@ void set_number(SceneParameters& p, std::string_view key, double value) {
 void set_assignment(SceneParameters& p, std::string_view assignment) {
   const auto equals = assignment.find('=');
   if (equals == std::string_view::npos)
-    throw InvalidParameter("--set", "\"" + std::string(assignment) + "\"",
+    throw InvalidParameter("--set", quoted_for_terminal(assignment),
                            "KEY=VALUE, e.g. structural.k=40");
   set_parameter(p, assignment.substr(0, equals), assignment.substr(equals + 1));
 }
@@ -128,35 +198,37 @@ std::string nearest_key(std::string_view key) {
     const int d = edit_distance(key, info.key);
     if (d < best_distance) best_distance = d, best = std::string(info.key);
   });
-  return best;
+  // A typo changes a few letters; beyond a third of the key the guess would only mislead.
+  return best_distance <= std::max(1, int(key.size()) / 3) ? best : std::string();
+}
+
+bool is_parameter_table(std::string_view name) {
+  const SceneParameters probe;
+  bool found = false;
+  for_each_field(probe, [&](const FieldInfo& info, auto&) {
+    found = found || (info.key.size() > name.size() && info.key.substr(0, name.size()) == name &&
+                      info.key[name.size()] == '.');
+  });
+  return found;
+}
+
+std::string unknown_key(std::string_view key) {
+  const std::string start = "there is no parameter " + quoted_for_terminal(key) + "; ";
+  if (const std::string near = nearest_key(key); !near.empty())
+    return start + "did you mean \"" + near + "\"?";
+  const auto dot = key.rfind('.');
+  if (dot != std::string_view::npos && is_parameter_table(key.substr(0, dot)))
+    return start + std::string(key.substr(0, dot)) + " has " + keys_in(key.substr(0, dot));
+  return start + "the parameters are " + overview() + " (springlab-run --help lists them all)";
 }
 
 void set_parameter(SceneParameters& p, std::string_view key, std::string_view text) {
-  bool found = false;
-  for_each_field(p, [&](const FieldInfo& info, auto& value) {
-    if (info.key != key) return;
-    found = true;
-    using T = std::decay_t<decltype(value)>;
-    const std::string shown = "\"" + std::string(text) + "\"";
-    if constexpr (std::is_same_v<T, std::string>) {
-      value = std::string(text);
-    } else if constexpr (std::is_same_v<T, bool>) {
-      if (!parse_bool(text, value))
-        throw InvalidParameter(std::string(key), shown, "true or false");
-    } else {
-      double parsed = 0.0;
-      const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), parsed);
-      if (error != std::errc{} || end != text.data() + text.size())
-        throw InvalidParameter(std::string(key), shown,
-                               "a number: " + info.range.describe(key, info.unit));
-      check_range(info, parsed);
-      value = static_cast<T>(parsed);
-    }
-  });
-  if (!found)
-    throw InvalidParameter(std::string(key), std::string(text),
-                           "there is no parameter \"" + std::string(key) + "\"; did you mean \"" +
-                               nearest_key(key) + "\"?");
+  set_parameter_shown(p, key, text, printable(text), true);
+}
+
+void set_parameter(SceneParameters& p, std::string_view key, std::string_view text,
+                   std::string_view written) {
+  set_parameter_shown(p, key, text, written, false);
 }
 
 }  // namespace springlab

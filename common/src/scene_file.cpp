@@ -1,13 +1,17 @@
 #include "springlab/scene_file.hpp"
 
 #include "springlab/errors.hpp"
+#include "springlab/scene_text.hpp"
 
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 namespace springlab {
 namespace {
@@ -35,11 +39,43 @@ std::string kind_of(const toml::node& node) {
   }
 }
 
-// The value as the file writes it, and what kind of value that is.
-std::string as_written(const toml::node& node) {
-  std::ostringstream out;
-  node.visit([&](const auto& value) { out << value; });
-  return out.str() + " (" + kind_of(node) + ")";
+// The file's text and name, to quote values as written and to say where they are.
+struct Source {
+  std::string_view text;
+  const std::string& path;
+};
+
+// The byte offset of a toml++ position, whose columns count code points from 1.
+std::size_t offset_of(std::string_view text, const toml::source_position& at) {
+  std::size_t offset = 0;
+  for (toml::source_index line = 1; line < at.line && offset < text.size(); ++line) {
+    const std::size_t end = text.find('\n', offset);
+    offset = end == std::string_view::npos ? text.size() : end + 1;
+  }
+  for (toml::source_index column = 1; column < at.column && offset < text.size(); ++column) {
+    ++offset;
+    while (offset < text.size() && (static_cast<unsigned char>(text[offset]) & 0xC0) == 0x80)
+      ++offset;  // the rest of a multi-byte character
+  }
+  return std::min(offset, text.size());
+}
+
+// The value as the file writes it (its first line, at most 60 bytes): quoted from the text,
+// never re-printed (toml++'s printer shows 0.2 as 0.20000000000000001, 2^63-1 read as a double
+// is 9223372036854775808, and the printer's layout code has undefined behaviour on NaN).
+std::string written_text(const Source& source, const toml::node& node) {
+  if (const toml::table* table = node.as_table(); table && table->empty()) return "{}";
+  const std::size_t begin = offset_of(source.text, node.source().begin);
+  const std::size_t end = std::max(begin, offset_of(source.text, node.source().end));
+  std::string text(source.text.substr(begin, end - begin));
+  const std::size_t cut = std::min<std::size_t>(text.find('\n'), 60);
+  return cut < text.size() ? text.substr(0, cut) + " ..." : text;
+}
+
+// The value as written and what kind of value that is, e.g. "3" (a string).
+std::string as_written(const Source& source, const toml::node& node) {
+  const toml::table* table = node.as_table();
+  return written_text(source, node) + " (" + (table ? "an empty table" : kind_of(node)) + ")";
 }
 
 // The node's value as set_parameter reads it, if its TOML type fits the field's C++ type:
@@ -72,35 +108,58 @@ const char* expected_kind() {
   return "a number";
 }
 
-void apply(const std::string& path, const toml::table& table, const std::string& prefix,
-           SceneParameters& p) {
-  for (const auto& [name, node] : table) {
-    const std::string key = prefix + std::string(name.str());
-    if (const toml::table* inner = node.as_table()) {
-      apply(path, *inner, key + ".", p);
-      continue;
+// A key of the file and its value: a value that is not a table, or an empty table.
+struct Entry {
+  std::string key;
+  const toml::node* node;
+};
+
+// Every entry, in the order of the file, gathered with a list instead of recursion: nesting
+// as deep as the text allows cannot overflow the stack.
+std::vector<Entry> entries_of(const toml::table& root) {
+  std::vector<Entry> entries;
+  std::vector<std::pair<const toml::table*, std::string>> pending{{&root, ""}};
+  while (!pending.empty()) {
+    const toml::table* table = pending.back().first;
+    const std::string prefix = std::move(pending.back().second);
+    pending.pop_back();
+    for (const auto& [name, node] : *table) {
+      std::string key = prefix + std::string(name.str());
+      const toml::table* inner = node.as_table();
+      if (inner && !inner->empty())
+        pending.emplace_back(inner, key + ".");
+      else
+        entries.push_back({std::move(key), &node});
     }
-    const std::string where = place(path, node.source()) + ": ";
-    std::string text;
-    bool known = false;
-    const char* wanted = nullptr;  // set when the key is known but the TOML type does not fit
-    for_each_field(p, [&](const FieldInfo& info, auto& value) {
-      using T = std::decay_t<decltype(value)>;
-      if (info.key != key) return;
-      known = true;
-      if (!text_for<T>(node, text)) wanted = expected_kind<T>();
-    });
-    if (!known)
-      throw InvalidParameter(
-          where + key, as_written(node),
-          "there is no parameter \"" + key + "\"; did you mean \"" + nearest_key(key) + "\"?");
-    if (wanted)
-      throw InvalidParameter(where + key, as_written(node), std::string("expected ") + wanted);
-    try {
-      set_parameter(p, key, text);  // also names an unknown key and the nearest known one
-    } catch (const InvalidParameter& error) {
-      throw InvalidParameter(where + error.field(), error.value(), error.allowed());
-    }
+  }
+  std::stable_sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    const toml::source_position &x = a.node->source().begin, &y = b.node->source().begin;
+    return x.line != y.line ? x.line < y.line : x.column < y.column;
+  });
+  return entries;
+}
+
+void apply(const Source& source, const Entry& entry, SceneParameters& p) {
+  const toml::node& node = *entry.node;
+  const toml::table* table = node.as_table();
+  if (table && is_parameter_table(entry.key)) return;  // e.g. an empty [structural]
+  const std::string where = place(source.path, node.source()) + ": " + entry.key;
+  std::string text;
+  bool known = false;
+  const char* wanted = nullptr;  // set when the key is known but the TOML type does not fit
+  for_each_field(p, [&](const FieldInfo& info, auto& value) {
+    using T = std::decay_t<decltype(value)>;
+    if (info.key != entry.key) return;
+    known = true;
+    if (!text_for<T>(node, text)) wanted = expected_kind<T>();
+  });
+  if (!known) throw InvalidParameter(where, as_written(source, node), unknown_key(entry.key));
+  if (wanted)
+    throw InvalidParameter(where, as_written(source, node), std::string("expected ") + wanted);
+  try {
+    set_parameter(p, entry.key, text, written_text(source, node));
+  } catch (const InvalidParameter& error) {
+    throw InvalidParameter(where, error.value(), error.allowed());
   }
 }
 
@@ -118,6 +177,7 @@ SceneParameters load_scene_file(const std::string& path) {
 }
 
 SceneParameters parse_scene(std::string_view text, const std::string& path) {
+  check_scene_text(text, path);  // what toml++ 3.3.0 would mishandle, refused first
   toml::table table;
   try {
     table = toml::parse(text, path);
@@ -127,7 +187,9 @@ SceneParameters parse_scene(std::string_view text, const std::string& path) {
   }
   SceneParameters p;
   p.name = path;
-  apply(path, table, "", p);
+  const Source source{text, path};
+  for (const Entry& entry : entries_of(table))
+    apply(source, entry, p);
   try {
     validate(p);  // the checks across fields, e.g. a displaced particle outside the grid
   } catch (const InvalidParameter& error) {

@@ -51,6 +51,7 @@ namespace springlab::detail {
 /// The vectors conjugate_gradients works with, kept by its caller to reuse their storage.
 struct ConjugateGradientStorage {
   Vectors residual, direction, product, preconditioned;
+  long products = 0;  // every multiply of every solve: the integrators' SolverWork
 };
 
 /// Solves A x = b for a symmetric positive definite A given only as a product,
@@ -74,6 +75,7 @@ bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, c
   const double threshold =
       std::max(tolerance * tolerance * b_norm2, std::numeric_limits<double>::min());
   multiply(x, cg.product);
+  ++cg.products;
   cg.residual = b - cg.product;
   double residual_norm2 = cg.residual.squaredNorm();
   if (residual_norm2 < threshold) return true;
@@ -81,6 +83,7 @@ bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, c
   double rz = cg.residual.cwiseProduct(cg.direction).sum();
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     multiply(cg.direction, cg.product);
+    ++cg.products;
     const double alpha = rz / cg.direction.cwiseProduct(cg.product).sum();
     x += alpha * cg.direction;
     cg.residual -= alpha * cg.product;

@@ -4,6 +4,7 @@
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
+#include "springlab/verlet_support.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -85,6 +86,28 @@ double verlet_critical_step(const LinearModel& model) {
   return 2.0 / highest_frequency(model);
 }
 
+double fastest_damping_rate(const LinearModel& model) {
+  if (model.mass.size() == 0) return 0.0;
+  const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(c, Eigen::EigenvaluesOnly);
+  return std::max(0.0, solver.eigenvalues().maxCoeff());
+}
+
+double verlet_iteration_factor() {
+  return std::pow(1e-12, 1.0 / verlet_max_iterations);
+}
+
+double verlet_iteration_limit(const LinearModel& model) {
+  const double c = fastest_damping_rate(model);
+  return c > 0.0 ? 2.0 * verlet_iteration_factor() / c : std::numeric_limits<double>::infinity();
+}
+
+void add_drag(LinearModel& model, double drag) {
+  model.damping.diagonal().array() += drag;
+  model.drag = Eigen::VectorXd::Constant(model.mass.size(), drag);
+}
+
 double highest_frequency_bound(const std::vector<Spring>& springs, const Vectors& r,
                                const Eigen::VectorXd& mass, const std::vector<bool>& pinned) {
   // Row i of K gets |B| from the spring's diagonal block and, if the other end is free, |B|
@@ -127,7 +150,7 @@ LinearModel linearise(const Scene& scene) {
   LinearModel model =
       linearise(scene.springs, particles.position, particles.mass, particles.pinned);
   const WindParameters& wind = scene.parameters.wind;
-  if (wind.enabled) model.damping.diagonal().array() += wind.drag;
+  if (wind.enabled) add_drag(model, wind.drag);
   return model;
 }
 

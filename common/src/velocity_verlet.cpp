@@ -30,6 +30,7 @@ class VelocityVerlet final : public Integrator {
   std::string_view name() const override { return "velocity-verlet"; }
   void step(const Model& model, double h, Vectors& r, Vectors& v) override;
   void restart() override { known_acceleration_ = false; }
+  SolverWork solver_work() const override { return {cg_.products, 0}; }
 
  private:
   // One damper as the product needs it: 16 bytes instead of the spring's 40.

@@ -108,6 +108,15 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
            "right after them (the median of 7 rounds), an implicit step here costs "
         << number(r.implicit_fabric_cost) << " force evaluations; its budget is "
         << number(implicit_step_budget) << ".\n";
+  if (s.name == "fabric" && r.implicit_fabric_solves.steps > 0) {
+    const SolverCount& c = r.implicit_fabric_solves;
+    out << "\nCounted rather than timed (what `--quick` checks): over " << c.steps
+        << " implicit Euler steps its conjugate gradients made at most " << c.most_products
+        << " products A x in a step (" << number(c.mean_products) << " on average; each reads the "
+        << "springs once, as an evaluation does) and " << c.factorisations
+        << " sparse factorisations; theory allows " << c.products_allowed
+        << " products a step (condition number at most " << number(c.condition_bound) << ").\n";
+  }
 }
 
 // The advice, from the numbers above.

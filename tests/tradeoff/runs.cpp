@@ -234,3 +234,48 @@ double step_cost(const Scenario& s, const std::string& method) {
 }
 
 }  // namespace springlab::tradeoff
+
+namespace springlab::tradeoff {
+
+long cg_product_bound(const Scene& scene, double h, double tolerance, double* condition) {
+  const Eigen::VectorXd& m = scene.particles.mass;
+  Eigen::VectorXd spring_load = Eigen::VectorXd::Zero(m.size());  // Σ_{s ∋ i} (h b + h² k)
+  for (const Spring& s : scene.springs) {
+    const double w = h * s.b + h * h * s.k;
+    spring_load[s.p] += w;
+    spring_load[s.q] += w;
+  }
+  const double lowest = m.minCoeff();
+  const double highest = m.maxCoeff() + 2.0 * spring_load.maxCoeff();
+  // Jacobi scaling by a diagonal D within [lowest, highest]: D^-1/2 A D^-1/2 has its eigenvalues
+  // in [lowest / highest, highest / lowest].
+  const double kappa = (highest / lowest) * (highest / lowest);
+  if (condition) *condition = kappa;
+  const double root = std::sqrt(kappa);
+  const double rate = (root - 1.0) / (root + 1.0);
+  if (rate <= 0.0) return 2;  // A a multiple of the identity: one iteration solves it
+  return 1 + long(std::ceil(std::log(2.0 * root / tolerance) / std::log(1.0 / rate)));
+}
+
+SolverCount count_solver_work(const Scenario& s, const std::string& method, long steps) {
+  SceneParameters p = s.params;
+  set_parameter(p, "integrator", method);
+  Simulation sim(p, lab_implementation());
+  SolverCount count;
+  count.products_allowed =
+      cg_product_bound(sim.scene(), p.step, implicit_euler_tolerance, &count.condition_bound);
+  long before = sim.integrator().solver_work().products;
+  for (long n = 0; n < steps; ++n) {
+    sim.step();
+    const SolverWork work = sim.integrator().solver_work();
+    count.most_products = std::max(count.most_products, work.products - before);
+    before = work.products;
+  }
+  const SolverWork total = sim.integrator().solver_work();
+  count.steps = steps;
+  count.mean_products = double(total.products) / double(steps);
+  count.factorisations = total.factorisations;
+  return count;
+}
+
+}  // namespace springlab::tradeoff

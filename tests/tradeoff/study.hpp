@@ -5,6 +5,7 @@
 #pragma once
 
 #include "springlab/parameters.hpp"
+#include "springlab/scene.hpp"
 #include "springlab/types.hpp"
 
 #include <cmath>
@@ -130,6 +131,29 @@ double evaluation_budget(const Scenario& s, const std::string& method, double h)
 /// Wall time of one force evaluation on the scene, s (minimum over a few batches).
 double evaluation_time(const Scenario& s);
 
+/// The linear-solve work of `steps` steps of an implicit method on a scene, counted through
+/// Integrator::solver_work (never timed, so a busy machine cannot change it), beside what
+/// conjugate-gradient theory allows a step.
+struct SolverCount {
+  long steps = 0;
+  long most_products = 0;      ///< the largest number of products A x in one step
+  double mean_products = 0;    ///< per step
+  long factorisations = 0;     ///< LDLᵀ fallbacks in all
+  long products_allowed = 0;   ///< cg_product_bound for the scene at its step
+  double condition_bound = 0;  ///< the bound on the preconditioned matrix's condition number
+};
+
+SolverCount count_solver_work(const Scenario& s, const std::string& method, long steps);
+
+/// Products a conjugate-gradient solve of implicit Euler's A = M + hC + h²K needs at most on the
+/// scene: with κ bounding the Jacobi-preconditioned A's condition number, the error falls by
+/// ρ = (√κ − 1)/(√κ + 1) an iteration in A's norm, and the residual by at least ρ^k / (2√κ) after
+/// k, so k = ln(2√κ/tol)/ln(1/ρ) iterations reach the tolerance, plus the first residual's product.
+/// κ from the springs: hC + h²K ≼ Σ_s (h b + h² k)(e_p − e_q)(e_p − e_q)ᵀ ⊗ I (every spring block
+/// has eigenvalues in [0, h b + h² k] once compressed springs are clamped), so A's eigenvalues lie
+/// in [m_min, m_max + 2 max_i Σ_{s ∋ i}(h b_s + h² k_s)], and so do its diagonal's entries.
+long cg_product_bound(const Scene& scene, double h, double tolerance, double* condition = nullptr);
+
 struct Results {
   StudyOptions options;
   std::vector<Scenario> scenarios;
@@ -138,6 +162,7 @@ struct Results {
   std::vector<Order> orders;
   std::vector<double> evaluation_seconds;      ///< per scenario
   double implicit_fabric_cost = std::nan("");  ///< step_cost of implicit-euler on the fabric
+  SolverCount implicit_fabric_solves;          ///< its counted solver work at the lab step
   double total_seconds = 0.0;
 };
 
@@ -146,6 +171,7 @@ struct Results {
 double cost_in_evaluations(const Results& r, const Run& run);
 
 /// An implicit step at the lab's values may cost at most this many force evaluations (issue 5).
+/// Reported from timings on the page; the --quick check counts products instead (SolverCount).
 inline constexpr double implicit_step_budget = 20.0;
 
 /// What a step of `method` costs on scene s at its lab step, in force evaluations' time: the

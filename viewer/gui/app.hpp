@@ -7,6 +7,7 @@
 #include "gui/imgui_glue.hpp"
 #include "gui/panel.hpp"
 #include "gui/session.hpp"
+#include "gui/sfml_messages.hpp"
 
 #include <SFML/Graphics/Image.hpp>
 #include <SFML/Graphics/RenderWindow.hpp>
@@ -58,6 +59,7 @@ class App {
   void on_key(sf::Keyboard::Key key);
 
   AppOptions options_;
+  SfmlMessageFilter sfml_messages_;  // before window_: making it prints the line it drops
   sf::RenderWindow window_;
   ImGuiGlue glue_;  // after window_: ImGui's GL objects go before the window's context
   Session session_;

@@ -5,6 +5,7 @@
 #include "gui/app.hpp"
 #include "gui/display.hpp"
 #include "gui/runs.hpp"
+#include "springlab/cli_values.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
@@ -12,8 +13,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 
@@ -30,8 +36,10 @@ struct Options {
   std::string impl = "reference";
   std::string compare = "off";
   std::optional<std::string> integrator;
-  std::optional<double> dt, real_time_factor;
-  std::optional<int> steps_per_frame;
+  // Numbers as written, read by option_number: CLI11 would take "nan", and "" for the default.
+  std::optional<std::string> dt, real_time_factor, steps_per_frame, frames;
+  std::optional<double> real_time_factor_value;
+  std::optional<int> steps_per_frame_value;
   std::vector<std::string> sets;
   std::string size = "1280x800";
   bool paused = false;
@@ -55,15 +63,62 @@ void parse_size(const std::string& text, AppOptions& app) {
 SceneParameters scene_from(const Options& options) {
   SceneParameters p = load_scene(options.app.scene);
   if (options.integrator) set_parameter(p, "integrator", *options.integrator);
-  if (options.dt) set_number(p, "step", *options.dt);
+  if (options.dt)
+    set_number(p, "step", option_number("--dt", *options.dt, parameter_range("step"), "s"));
   for (const std::string& assignment : options.sets)
     set_assignment(p, assignment);
   validate(p);
   return p;
 }
 
+// Every number, read before a window opens.
+void read_numbers(Options& options) {
+  if (options.real_time_factor)
+    options.real_time_factor_value =
+        option_number("--real-time-factor", *options.real_time_factor, Range{0.001, 1000.0});
+  if (options.steps_per_frame)
+    options.steps_per_frame_value = int(option_number("--steps-per-frame", *options.steps_per_frame,
+                                                      Range{1, 100000, false, false, true}));
+  if (options.frames)
+    options.run.frames =
+        long(option_number("--frames", *options.frames, Range{1, 1e8, false, false, true}));
+}
+
+// The folder of a file to be written: it exists and may be written in.
+void check_folder(const char* option, const std::string& path,
+                  const std::filesystem::path& folder) {
+  const std::filesystem::path where = folder.empty() ? "." : folder;
+  std::error_code error;
+  if (!std::filesystem::is_directory(where, error) || access(where.c_str(), W_OK) != 0)
+    throw InvalidParameter(
+        option, "\"" + path + "\"",
+        "a path in a folder that exists and can be written (" + where.string() + " is not)");
+}
+
+// --screenshot and --record, checked before the first frame rather than after the last.
+void check_outputs(const RunOptions& run) {
+  if (!run.screenshot.empty()) {
+    std::string extension = std::filesystem::path(run.screenshot).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (extension != ".png" && extension != ".bmp" && extension != ".tga" && extension != ".jpg" &&
+        extension != ".jpeg")
+      throw InvalidParameter("--screenshot", "\"" + run.screenshot + "\"",
+                             "a file ending in .png, .bmp, .tga, .jpg or .jpeg");
+    check_folder("--screenshot", run.screenshot,
+                 std::filesystem::path(run.screenshot).parent_path());
+  }
+  if (!run.record.empty()) {
+    std::error_code error;
+    std::filesystem::create_directories(run.record, error);
+    check_folder("--record", run.record, run.record);
+  }
+}
+
 int open_viewer(Options& options) {
   parse_size(options.size, options.app);
+  read_numbers(options);
+  check_outputs(options.run);
   const SceneParameters p = scene_from(options);
   const bool headless = options.run.frames > 0 || !options.run.screenshot.empty() ||
                         !options.run.record.empty() || options.run.benchmark;
@@ -81,9 +136,9 @@ int open_viewer(Options& options) {
   Session& session = app.session();
   session.parameters() = p;
   Pacing& pacing = session.pacing();
-  if (options.real_time_factor) pacing.real_time_factor = *options.real_time_factor;
-  if (options.steps_per_frame)
-    pacing.real_time = false, pacing.steps_per_frame = *options.steps_per_frame;
+  if (options.real_time_factor_value) pacing.real_time_factor = *options.real_time_factor_value;
+  if (options.steps_per_frame_value)
+    pacing.real_time = false, pacing.steps_per_frame = *options.steps_per_frame_value;
   session.set_code(options.impl == "student" ? Code::student : Code::reference);
   if (options.compare != "off" && !reference_is_available())
     std::cerr << "springlab-view: --compare " << options.compare
@@ -117,15 +172,12 @@ int main(int argc, char** argv) {
   cli.add_option("--set", options.sets, "KEY=VALUE: change a scene parameter, e.g. structural.k=40")
       ->take_all();
   cli.add_option("--real-time-factor", options.real_time_factor,
-                 "simulated seconds per second of wall time (default 1)")
-      ->check(CLI::Range(0.001, 1000.0));
+                 "simulated seconds per second of wall time, 0.001 to 1000 (default 1)");
   cli.add_option("--steps-per-frame", options.steps_per_frame,
-                 "a fixed number of steps a frame instead of real time")
-      ->check(CLI::Range(1, 100000));
-  cli.add_option("--frames", options.run.frames,
+                 "a fixed number of steps a frame instead of real time, 1 to 100000");
+  cli.add_option("--frames", options.frames,
                  "run this many frames with no user input, then exit (default with --screenshot "
-                 "or --record: 120; with --benchmark: 600)")
-      ->check(CLI::Range(1L, 100000000L));
+                 "or --record: 120; with --benchmark: 600)");
   cli.add_option("--screenshot", options.run.screenshot, "save the last frame as this PNG file");
   cli.add_option("--record", options.run.record, "save every frame into this directory");
   cli.add_flag("--benchmark", options.run.benchmark,
@@ -141,9 +193,12 @@ int main(int argc, char** argv) {
              "pauses, S steps once, R resets, F fits the view.");
   try {
     cli.parse(argc, argv);
+  } catch (const CLI::Success& help) {
+    return cli.exit(help);
   } catch (const CLI::ParseError& error) {
-    const int code = cli.exit(error);
-    return code == 0 ? 0 : bad_input;
+    std::cerr << "springlab-view: " << error.what()
+              << " (springlab-view --help lists the options)\n";
+    return bad_input;
   }
   try {
     return open_viewer(options);

@@ -93,6 +93,20 @@ void benchmark_report(const std::vector<double>& frames, long steps, double seco
                     : "real time at 60 frames/s: no (p95 above 16.7 ms)\n");
 }
 
+// Said once, when a frame's steps take more than a second: the window then lags far behind the
+// simulated time and seems frozen, which a student would otherwise take for a bug.
+void warn_if_too_slow(const FrameInfo& frame, bool& warned) {
+  if (warned || frame.stepping_seconds <= 1.0) return;
+  warned = true;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "springlab-view: one frame's %ld steps took %.3g s: the viewer cannot keep up "
+                "with this scene (a few frames a minute); a smaller grid, a larger step or "
+                "another integrator is faster\n",
+                frame.steps, frame.stepping_seconds);
+  std::fputs(line, stderr);
+}
+
 }  // namespace
 
 void print_summary(const Session& session, std::ostream& out) {
@@ -127,6 +141,7 @@ int run(App& app, const RunOptions& options, std::ostream& out) {
   double stepping = 0.0;
   const auto start = std::chrono::steady_clock::now();
   auto last = start;
+  bool warned_slow = false;
   for (long frame = 0; app.is_open() && (options.frames == 0 || frame < options.frames); ++frame) {
     const bool last_frame = frame + 1 == options.frames;
     app.frame(!options.record.empty() || (last_frame && !options.screenshot.empty()));
@@ -134,6 +149,7 @@ int run(App& app, const RunOptions& options, std::ostream& out) {
     const auto now = std::chrono::steady_clock::now();
     frame_seconds.push_back(std::chrono::duration<double>(now - last).count());
     last = now;
+    warn_if_too_slow(app.last_frame(), warned_slow);
     steps += app.last_frame().steps;
     stepping += app.last_frame().stepping_seconds;
     phases.push_back(app.last_frame().phases);

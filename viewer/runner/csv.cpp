@@ -40,3 +40,60 @@ void write_csv_row(std::ostream& out, const Simulation& simulation) {
 }
 
 }  // namespace springlab
+
+#include "springlab/errors.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <iostream>
+#include <sstream>
+
+namespace springlab {
+
+CsvOutput::CsvOutput(const std::string& path)
+    : stream_(path == "-" ? &std::cout : &file_),
+      shown_(path == "-" ? "standard output" : "\"" + path + "\"") {
+  if (path == "-") return;
+  errno = 0;
+  file_.open(path);
+  if (!file_)
+    throw InvalidParameter("--csv", shown_,
+                           std::string("a file that can be written") +
+                               (errno ? std::string(" (") + std::strerror(errno) + ")" : ""));
+}
+
+bool CsvOutput::to_stdout() const {
+  return stream_ == &std::cout;
+}
+
+void CsvOutput::start(const Simulation& simulation) {
+  write_csv_header(*stream_, simulation.particles().size());
+  row(simulation);
+}
+
+void CsvOutput::row(const Simulation& simulation) {
+  errno = 0;
+  write_csv_row(*stream_, simulation);
+  ++rows_;
+  check(simulation);
+}
+
+void CsvOutput::finish(const Simulation& simulation) {
+  errno = 0;
+  stream_->flush();
+  if (file_.is_open()) file_.close();
+  check(simulation);
+}
+
+void CsvOutput::check(const Simulation& simulation) {
+  // The stream fails when its buffer is written out, some rows after the one that filled it.
+  if (!file_.fail() && (!to_stdout() || std::cout.good())) return;
+  std::ostringstream message;
+  message << "the CSV could not be written to " << shown_;
+  if (errno) message << " (" << std::strerror(errno) << ")";
+  message << ": it failed after " << rows_
+          << " rows, and the run stopped at t = " << simulation.time() << " s";
+  throw WriteFailed(message.str());
+}
+
+}  // namespace springlab

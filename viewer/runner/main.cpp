@@ -1,7 +1,10 @@
 // springlab-run: the headless front end. Runs a scene with the reference or the student's code
 // and writes the state as CSV. Exit codes: 0 done, 1 the code under test failed in a way the kit
-// does not know, 2 bad input, 3 diverged, 4 task not written yet.
+// does not know, 2 bad input, 3 diverged, 4 task not written yet, 6 the output could not be
+// written (a full disk, a closed pipe: the run stops rather than lose rows without a word).
 #include "runner/csv.hpp"
+#include "runner/progress.hpp"
+#include "springlab/cli_values.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
@@ -11,9 +14,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include <unistd.h>
+
+#include <cerrno>
 #include <chrono>
 #include <cmath>
-#include <fstream>
+#include <cstring>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <optional>
@@ -23,25 +30,31 @@ namespace {
 
 using namespace springlab;
 
-enum Exit { done = 0, failed = 1, bad_input = 2, diverged = 3, not_written = 4 };
+enum Exit { done = 0, failed = 1, bad_input = 2, diverged = 3, not_written = 4, lost_output = 6 };
 
+// The numbers are kept as written and read by option_number: CLI11 would take "nan", and take
+// an empty value for the default.
 struct Options {
   std::string scene = "task1";
   std::string impl = "reference";
   std::optional<std::string> integrator;
-  std::optional<double> dt, duration;
+  std::optional<std::string> dt, duration;
   std::vector<std::string> sets;
-  long every = 1;
+  std::string every = "1";
   std::string csv;
   bool quiet = false;
   bool stability = false;
+  bool estimate = false;
 };
 
 SceneParameters scene_from(const Options& options) {
   SceneParameters p = load_scene(options.scene);
   if (options.integrator) set_parameter(p, "integrator", *options.integrator);
-  if (options.dt) set_number(p, "step", *options.dt);
-  if (options.duration) set_number(p, "duration", *options.duration);
+  if (options.dt)
+    set_number(p, "step", option_number("--dt", *options.dt, parameter_range("step"), "s"));
+  if (options.duration)
+    set_number(p, "duration",
+               option_number("--duration", *options.duration, parameter_range("duration"), "s"));
   for (const std::string& assignment : options.sets)
     set_assignment(p, assignment);
   validate(p);
@@ -162,17 +175,23 @@ void print_stability_report(std::ostream& out, const SceneParameters& p,
         << " particles: no eigen-solves; the steps below are estimates from the bounds, and "
            "verlet's is a lower bound: the exact 2/omega_max is larger)\n";
   out << "  critical step h_c of each integrator, against h = " << p.step << " s:\n";
+  // Each column padded to its width and always followed by two spaces: a value wider than its
+  // column (1e+154 s) pushes the rest right instead of running into it.
+  const auto column = [](std::string_view text, std::size_t width) {
+    std::string padded(text);
+    if (padded.size() < width) padded.resize(width, ' ');
+    return padded + "  ";
+  };
   for (const auto& [name, limit] : report.limits) {
     std::ostringstream value;
     if (limit.source == LimitSource::no_limit || std::isinf(limit.step))
       value << "none";
     else if (limit.source != LimitSource::not_computed)
-      value << limit.step << " s";
+      value << std::setprecision(6) << limit.step << " s";
     else
       value << "?";
     std::ostringstream line;
-    line << "    " << std::left << std::setw(18) << name << std::setw(14) << value.str()
-         << std::setw(19) << how(limit.source);
+    line << "    " << column(name, 16) << column(value.str(), 12) << column(how(limit.source), 17);
     const bool known = limit.source != LimitSource::not_computed;
     if (known && p.step >= limit.step) line << "  h EXCEEDS it: unstable";
     if (name == p.integrator) line << "  <- the scene's integrator";
@@ -180,6 +199,11 @@ void print_stability_report(std::ostream& out, const SceneParameters& p,
     text.erase(text.find_last_not_of(' ') + 1);
     out << text << '\n';
   }
+  if (p.wind.enabled && p.wind.drag > 0)
+    out << "  the wind's drag c (w - v) is explicit in every integrator (implicit-euler and "
+           "velocity-verlet too: only their springs and dampers are implicit); alone it allows "
+           "h < 2 m / c = 2 * "
+        << p.mass << " kg / " << p.wind.drag << " N*s/m = " << 2 * p.mass / p.wind.drag << " s\n";
 }
 
 // When the student's code diverged: the reference code on the same scene and step, for as many
@@ -201,44 +225,96 @@ std::string reference_verdict(const SceneParameters& p, const Implementation& im
   return " The reference code is stable at this h on this scene for as long: look at your code.";
 }
 
+long every_from(const Options& options) {
+  const Range whole_steps{1, max_steps, false, false, true};
+  return long(option_number("--every", options.every, whole_steps));
+}
+
+// --csv naming the scene file (by any path to it) would overwrite the scene: refused before
+// anything is opened.
+void refuse_the_scene_file(const Options& options) {
+  std::error_code error;
+  if (!options.csv.empty() && options.csv != "-" &&
+      std::filesystem::equivalent(options.csv, options.scene, error))
+    throw InvalidParameter(
+        "--csv", "\"" + options.csv + "\"",
+        "not the scene file: writing the CSV would overwrite the scene " + options.scene);
+}
+
+// --estimate: the first steps timed (wall time), the whole run's time from them.
+int print_estimate(Simulation& sim, long steps) {
+  const auto start = std::chrono::steady_clock::now();
+  const auto elapsed = [&start] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
+  long n = 0;
+  while (n < steps && (n == 0 || elapsed() < 0.2)) {
+    sim.step();
+    ++n;
+  }
+  const double per_step = n > 0 ? elapsed() / double(n) : 0.0;  // duration 0: no step at all
+  std::cout << "springlab-run: " << run_estimate(steps, per_step) << '\n';
+  return done;
+}
+
+Progress::Settings progress_settings() {
+  Progress::Settings settings;
+  settings.terminal = isatty(STDERR_FILENO) == 1;
+  return settings;
+}
+
+// A divergence of the student's code, with the reference's verdict on the same run added.
+DivergenceError with_reference_verdict(const DivergenceError& error, const Simulation& sim) {
+  const std::string verdict =
+      reference_verdict(sim.parameters(), sim.implementation(), sim.steps_taken());
+  if (verdict.empty()) return error;
+  std::string why = error.what();  // the report after "quantity: ", as the viewer shows it
+  if (const auto at = why.find(error.quantity() + ": "); at != std::string::npos)
+    why.erase(0, at + error.quantity().size() + 2);
+  return DivergenceError(error.time(), error.particle(), error.quantity(), why + verdict);
+}
+
+void run_steps(Simulation& sim, long steps, long every, std::optional<CsvOutput>& csv,
+               std::optional<Progress>& progress) {
+  for (long n = 1; n <= steps; ++n) {
+    sim.step();
+    if (csv && (n % every == 0 || n == steps)) csv->row(sim);
+    if (progress) progress->after_step(n, sim.time());
+  }
+  sim.check();  // the energy is watched every few steps only: look once more at the end
+  if (csv) csv->finish(sim);
+}
+
 int run(const Options& options) {
-  if (options.every < 1)
-    throw InvalidParameter("--every", std::to_string(options.every), "a whole number >= 1");
+  const long every = every_from(options);
+  refuse_the_scene_file(options);
   const SceneParameters p = scene_from(options);
   if (options.stability) {
     print_stability_report(std::cout, p, implementation_for(options, p));
     return done;
   }
   Simulation sim(p, implementation_for(options, p));
-  std::ofstream file;
-  std::ostream* csv = nullptr;
-  if (options.csv == "-") {
-    csv = &std::cout;
-  } else if (!options.csv.empty()) {
-    file.open(options.csv);
-    if (!file) throw InvalidParameter("--csv", options.csv, "a file that can be written");
-    csv = &file;
-  }
-  std::ostream& report = csv == &std::cout ? std::cerr : std::cout;
-  if (csv) write_csv_header(*csv, sim.particles().size()), write_csv_row(*csv, sim);
+  const long steps = steps_for(p);
+  if (options.estimate) return print_estimate(sim, steps);
+  std::optional<CsvOutput> csv;
+  if (!options.csv.empty()) csv.emplace(options.csv);
+  std::ostream& report = csv && csv->to_stdout() ? std::cerr : std::cout;
+  if (csv) csv->start(sim);
 
   const Diagnostics start = sim.diagnostics();
-  const long steps = steps_for(p);
+  std::optional<Progress> progress;
+  if (!options.quiet) progress.emplace(steps, p.duration, std::cerr, progress_settings());
   const auto clock_start = std::chrono::steady_clock::now();
   try {
-    for (long n = 1; n <= steps; ++n) {
-      sim.step();
-      if (csv && (n % options.every == 0 || n == steps)) write_csv_row(*csv, sim);
-    }
-    sim.check();  // the energy is watched every few steps only: look once more at the end
+    run_steps(sim, steps, every, csv, progress);
   } catch (const DivergenceError& error) {
-    const std::string verdict = reference_verdict(p, sim.implementation(), sim.steps_taken());
-    if (verdict.empty()) throw;
-    std::string why = error.what();  // the report after "quantity: ", as the viewer shows it
-    if (const auto at = why.find(error.quantity() + ": "); at != std::string::npos)
-      why.erase(0, at + error.quantity().size() + 2);
-    throw DivergenceError(error.time(), error.particle(), error.quantity(), why + verdict);
+    if (progress) progress->finish();
+    throw with_reference_verdict(error, sim);
+  } catch (...) {
+    if (progress) progress->finish();
+    throw;
   }
+  if (progress) progress->finish();
   const std::chrono::duration<double> wall = std::chrono::steady_clock::now() - clock_start;
   if (!options.quiet) {
     print_summary(report, sim, start, wall.count());
@@ -247,7 +323,23 @@ int run(const Options& options) {
   return done;
 }
 
+// Standard output lost (a full disk, a closed pipe): an error, not a silent exit 0.
+int checked_stdout(int code) {
+  errno = 0;
+  std::cout.flush();
+  if (std::cout.good()) return code;
+  std::cerr << "springlab-run: standard output could not be written"
+            << (errno ? std::string(" (") + std::strerror(errno) + ")" : std::string()) << '\n';
+  return code == done ? lost_output : code;
+}
+
 }  // namespace
+
+constexpr const char* exit_codes =
+    "Exit codes: 0 done, 1 an unexpected error, 2 bad input, 3 the run diverged, 4 a task not "
+    "written yet, 6 the output could not be written (a full disk, a closed pipe).\n"
+    "Runs that last more than a few seconds show their progress on stderr; one that would last "
+    "more than a few minutes says so first (--estimate says how long and stops).\n";
 
 int main(int argc, char** argv) {
   Options options;
@@ -266,18 +358,25 @@ int main(int argc, char** argv) {
       ->take_all();
   app.add_option("--every", options.every, "write every N-th step (N >= 1)")->capture_default_str();
   app.add_option("--csv", options.csv, "FILE, or - for standard output (default: no CSV)");
-  app.add_flag("--quiet", options.quiet, "no summary");
+  app.add_flag("--quiet", options.quiet, "no summary, no progress");
+  app.add_flag("--estimate", options.estimate,
+               "time the first steps, print how long the whole run would take, and stop");
   app.add_flag("--stability", options.stability,
                "print omega_max and every integrator's critical step for the scene, and stop");
-  app.footer(parameter_list());
+  app.footer(parameter_list() + exit_codes);
   try {
     app.parse(argc, argv);
+  } catch (const CLI::Success& help) {
+    return app.exit(help);
   } catch (const CLI::ParseError& error) {
-    const int code = app.exit(error);
-    return code == 0 ? done : bad_input;
+    std::cerr << "springlab-run: " << error.what() << " (springlab-run --help lists the options)\n";
+    return bad_input;
   }
   try {
-    return run(options);
+    return checked_stdout(run(options));
+  } catch (const WriteFailed& error) {
+    std::cerr << "springlab-run: " << error.what() << '\n';
+    return lost_output;
   } catch (const InvalidParameter& error) {
     std::cerr << "springlab-run: " << error.what() << '\n';
     return bad_input;

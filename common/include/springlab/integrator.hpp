@@ -45,6 +45,17 @@ struct Model {
   const std::vector<bool>& pinned;           ///< pinned particles never move
 };
 
+/// What a step does besides evaluating a(r, v), counted rather than timed, so that tests and the
+/// trade-off study can judge a method's work on a busy machine: the implicit methods' solves.
+struct SolverWork {
+  long products = 0;        ///< products A x of a linear solve (each one pass over the springs)
+  long factorisations = 0;  ///< sparse LDLᵀ factorisations (implicit Euler's fallback)
+};
+
+/// implicit-euler's conjugate gradients stop when |b − A x| < this × |b| (a direct solve after
+/// 100 iterations without it).
+inline constexpr double implicit_euler_tolerance = 1e-12;
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
@@ -55,6 +66,8 @@ class Integrator {
   /// outside (a reset, a dragged particle); a change of h, of the particle count or of the
   /// springs' dampers, masses or pins is noticed by the integrators themselves.
   virtual void restart() {}
+  /// The solver work of every step so far (zero for the explicit methods).
+  virtual SolverWork solver_work() const { return {}; }
 };
 
 /// The six methods above, from the least to the most work per step.

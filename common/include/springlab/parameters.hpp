@@ -168,6 +168,11 @@ void validate(const SceneParameters& p);
 /// the field's type, or a value out of range.
 void set_parameter(SceneParameters& p, std::string_view key, std::string_view value);
 
+/// set_parameter whose messages show the value as `written` (a scene file's own text, e.g.
+/// 0.20000000000000001 or "3" with its quotes) rather than as `value`.
+void set_parameter(SceneParameters& p, std::string_view key, std::string_view value,
+                   std::string_view written);
+
 /// set_parameter with a number, passed on exactly (as the front ends' --dt and --duration do).
 void set_number(SceneParameters& p, std::string_view key, double value);
 
@@ -175,7 +180,15 @@ void set_number(SceneParameters& p, std::string_view key, double value);
 /// InvalidParameter naming --set for text without '='.
 void set_assignment(SceneParameters& p, std::string_view assignment);
 
-/// The known field name nearest to `key` (edit distance), for "did you mean" hints.
+/// The known field name nearest to `key` (edit distance), for "did you mean" hints; empty when
+/// none is close (more than a third of the key's letters would change).
 std::string nearest_key(std::string_view key);
+
+/// Whether `name` is a table of parameters: "shear", "wind", "wind.direction".
+bool is_parameter_table(std::string_view name);
+
+/// What to say of an unknown key: the close key meant, else the keys of its table, else the
+/// parameters there are.
+std::string unknown_key(std::string_view key);
 
 }  // namespace springlab

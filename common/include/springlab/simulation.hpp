@@ -25,7 +25,11 @@ struct DivergenceLimits {
   /// remove it, so a stable step never comes near; an unstable one passes it within a few
   /// hundred steps of reaching visible amplitudes.
   double energy_growth = 1e4;
-  /// Steps between energy checks (finiteness is checked every step).
+  /// Steps between checks of the total energy (springs and gravity included, a pass over the
+  /// springs). After every step the state's finiteness and its kinetic energy (one pass over the
+  /// particles, no force evaluation) are checked, and the total too whenever the kinetic energy
+  /// alone passes the limit: so no step that ran away is ever seen by a caller (a CSV row, the
+  /// viewer), since a runaway step makes the velocities grow with everything else.
   int energy_check_interval = 8;
   /// Whether a divergence report says why, from physics (divergence.hpp): the run keeps its
   /// state at the start (or at the last set_particle, set_pinned or continue_from) and, when it
@@ -52,8 +56,9 @@ class Simulation {
   /// of diagnose_divergence (divergence.hpp) when limits.diagnose.
   void step();
   void advance(long steps);
-  /// The full divergence check (finiteness and energy) on the current state; step() checks the
-  /// energy only every energy_check_interval steps, so call this at the end of a run.
+  /// The full divergence check (finiteness and total energy) on the current state; step() checks
+  /// the total energy only every energy_check_interval steps (the kinetic energy every step), so
+  /// call this at the end of a run.
   void check() const;
 
   /// The model the integrator sees: a_i = F_i / m_i with the spring and damper forces of every

@@ -24,8 +24,13 @@ inline constexpr double rigid_tolerance = 1e-6;
 /// M δr'' = -K δr - C δv about a configuration r, for the free (unpinned) degrees of freedom.
 struct LinearModel {
   Eigen::MatrixXd stiffness;  ///< K = ∂²(spring energy)/∂r², N/m
-  Eigen::MatrixXd damping;    ///< C (dampers act on relative velocity), N·s/m
+  Eigen::MatrixXd damping;    ///< C (dampers act on relative velocity, plus drag), N·s/m
   Eigen::VectorXd mass;       ///< M's diagonal, kg (each free particle's mass twice: x and y)
+  /// The share of C's diagonal that comes from external forces (the wind's drag c(w − v)),
+  /// N·s/m, per coordinate; empty without. Implicit Euler and velocity Verlet treat the
+  /// springs' dampers implicitly but external forces explicitly, so this share limits their
+  /// step: h < 2m/c for a mode the drag alone damps.
+  Eigen::VectorXd drag;
 };
 
 LinearModel linearise(const std::vector<Spring>& springs, const Vectors& r,
@@ -64,6 +69,20 @@ double explicit_euler_critical_step(const LinearModel& model);
 
 /// 2/ω_max, the limit of Störmer–Verlet with a central-difference velocity (equation (4.5)), s.
 double verlet_critical_step(const LinearModel& model);
+
+/// c_max, the largest damping rate of the model: the largest eigenvalue of M^-½ C M^-½, 1/s.
+double fastest_damping_rate(const LinearModel& model);
+
+/// Task 4's Verlet finds v_n by iterating (4.1)-(4.2); each estimate shrinks the error by h c/2
+/// (c a mode's damping rate), so it settles to 1e-12 within verlet_max_iterations only while
+/// h c_max / 2 < 1e-12^(1/verlet_max_iterations) (0.76): the step limit of damping, s. Infinity
+/// without damping.
+double verlet_iteration_limit(const LinearModel& model);
+
+/// Adds the wind's drag c(w − v) to the model: c on every free coordinate, as a damper to the
+/// air (the gusts w(t) drive the motion but do not change its stability), and recorded in
+/// model.drag as taken explicitly.
+void add_drag(LinearModel& model, double drag);
 
 /// An upper bound of ω_max without an eigen-solve, for a scene of any size, rad/s. Every
 /// eigenvalue ω² of M⁻¹K lies in a Gershgorin disc of its rows, so ω_max² ≤ max_i Σ_j |K_ij| / m_i
@@ -118,19 +137,28 @@ struct CriticalStep {
 /// The critical step h_c of the integrator `name` (integrator.hpp) for this model, s:
 ///   explicit-euler, rk4  exact per mode from the system eigenvalues λ: their step matrices are
 ///                        polynomials in hA, so each mode is multiplied by 1 + hλ or R(hλ);
-///   verlet, velocity-verlet  2/ω_max, exact for any damping;
+///   verlet               2/ω_max (exact for any damping), or verlet_iteration_limit when
+///                        smaller (strong damping);
+///   velocity-verlet      2/ω_max, exact for any damping of the springs; by bisection when
+///                        model.drag (taken explicitly) is not zero;
 ///   symplectic-euler     by bisection up to bisection_particles_max free particles; beyond, per
 ///                        mode 4/(c + √(c² + 4ω²)) with the modal damping c = φᵀCφ (exact when
 ///                        the damping is proportional to the stiffness, close on the lab grids);
-///   implicit-euler       infinity.
+///   implicit-euler       infinity without drag; by bisection with it (the drag is explicit:
+///                        about 2m/c).
 CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator);
 
 /// The critical step of `integrator` estimated from bounds alone, for scenes too large for
 /// eigen-solves: ω_max ≤ frequency_bound (rad/s) and every mode's damping rate c ≤ damping_bound
-/// (1/s), and each per-mode limit falls as ω and c grow. Not computed for explicit-euler, whose
-/// limit hangs on each mode's damping ratio.
+/// (1/s, drag included), and each per-mode limit falls as ω and c grow; drag_rate, the largest
+/// c/m of an explicit drag (1/s), limits implicit Euler and velocity Verlet to 2/drag_rate. Not
+/// computed for explicit-euler, whose limit hangs on each mode's damping ratio.
 CriticalStep estimated_critical_step(std::string_view integrator, double frequency_bound,
-                                     double damping_bound);
+                                     double damping_bound, double drag_rate = 0.0);
+
+/// 1e-12^(1/verlet_max_iterations): the largest factor h c/2 by which each estimate of task 4's
+/// Verlet iteration may shrink the error and still settle in time (0.76).
+double verlet_iteration_factor();
 
 /// critical_step_of(model, integrator).step.
 double critical_step(const LinearModel& model, std::string_view integrator);

@@ -1,0 +1,35 @@
+# Writes one Clang 14 syntax-only command per file of a compile_commands.json, for .ci/clang-syntax:
+#   cmake -DDATABASE=build/dev/compile_commands.json -DOUT=commands.txt -P .ci/clang-syntax.cmake
+# Each command is the build's own (defines, include paths, standard) with the compiler swapped
+# for clang++ and no output; GCC-only warning options are ignored and warnings are not errors (the
+# promise is that the kit compiles with Clang; its warnings are the GCC build's business).
+file(READ "${DATABASE}" database)
+string(JSON count LENGTH "${database}")
+math(EXPR last "${count} - 1")
+set(lines "")
+foreach(i RANGE ${last})
+  string(JSON file GET "${database}" ${i} file)
+  if(file MATCHES "/tests/grader/hostile/|/tests/fuzz/|/build/")
+    continue()
+  endif()
+  string(JSON directory GET "${database}" ${i} directory)
+  string(JSON command GET "${database}" ${i} command)
+  separate_arguments(arguments UNIX_COMMAND "${command}")
+  list(POP_FRONT arguments)  # the compiler
+  set(kept "")
+  set(skip_next OFF)
+  foreach(argument IN LISTS arguments)
+    if(skip_next)
+      set(skip_next OFF)
+    elseif(argument STREQUAL "-o" OR argument STREQUAL "-MF" OR argument STREQUAL "-MT")
+      set(skip_next ON)
+    elseif(NOT argument MATCHES "^(-c|-MD|-flto.*|-fno-fat-lto-objects|-Werror)$")
+      string(REPLACE "'" "'\\''" argument "${argument}")
+      list(APPEND kept "'${argument}'")
+    endif()
+  endforeach()
+  list(JOIN kept " " kept)
+  string(APPEND lines "cd '${directory}' && clang++ -fsyntax-only -Wno-unknown-warning-option "
+                      "-Wno-error ${kept}\n")
+endforeach()
+file(WRITE "${OUT}" "${lines}")

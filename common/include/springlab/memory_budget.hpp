@@ -1,0 +1,35 @@
+// How much memory a run needs and how much the process may have: the guard validate() applies
+// before anything of a grid is allocated.
+#pragma once
+
+#include "springlab/parameters.hpp"
+
+#include <string>
+
+namespace springlab {
+
+/// The memory a process may still allocate, and what limits it.
+struct MemoryLimit {
+  double bytes = 0.0;  ///< B
+  std::string source;  ///< "physical memory", "ulimit -v", "ulimit -d" or "cgroup"
+};
+
+/// The smallest of: the physical memory still available (MemAvailable), RLIMIT_AS less the
+/// address space in use (ulimit -v), RLIMIT_DATA less the data in use (ulimit -d), and the
+/// process's cgroup limit less its usage (v2 memory.max, v1 memory.limit_in_bytes).
+MemoryLimit available_memory();
+
+/// About how many bytes a run of scene p with p.integrator needs at its peak: the particles,
+/// the springs, the simulation's buffers and the integrator's (implicit Euler's sparse
+/// factorisation included, which its fallback solver may need at any step). From the data
+/// structures, checked against the maximum resident size of springlab-run (memory_budget.cpp).
+double estimated_bytes(const SceneParameters& p);
+
+/// Throws InvalidParameter (field "rows x cols") when estimated_bytes(p) exceeds limit.bytes.
+void check_memory(const SceneParameters& p, const MemoryLimit& limit);
+
+/// What a std::bad_alloc during a run of p becomes: InvalidParameter (field "rows x cols") that
+/// says when ("while building the scene", "at t = 0.5 s"), the estimate and the limit now.
+[[noreturn]] void throw_out_of_memory(const SceneParameters& p, const std::string& when);
+
+}  // namespace springlab

@@ -1,0 +1,57 @@
+#include "springlab/cli_values.hpp"
+
+#include "springlab/errors.hpp"
+
+#include <charconv>
+#include <cstdio>
+#include <stdexcept>
+
+namespace springlab {
+
+double option_number(std::string_view option, std::string_view text, const Range& range,
+                     std::string_view unit) {
+  const std::string name(option.substr(option.find_first_not_of('-')));
+  const std::string shown = "\"" + std::string(text) + "\"";
+  // "+2" is a number to a person; from_chars takes only "-" for a sign.
+  std::string_view digits = text;
+  if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size())
+    throw InvalidParameter(std::string(option), shown,
+                           "not a number; allowed " + range.describe(name, unit));
+  if (!range.contains(value))
+    throw InvalidParameter(std::string(option), shown, "allowed " + range.describe(name, unit));
+  return value;
+}
+
+Range parameter_range(std::string_view key) {
+  const SceneParameters defaults;
+  Range found;
+  bool known = false;
+  for_each_field(defaults, [&](const FieldInfo& info, const auto&) {
+    if (info.key == key) found = info.range, known = true;
+  });
+  if (!known) throw std::logic_error("no scene parameter " + std::string(key));
+  return found;
+}
+
+std::string duration_in_words(double seconds) {
+  struct Unit {
+    const char* name;
+    double seconds;
+  };
+  // From the largest down: the first unit the time fills at least once.
+  const Unit units[] = {
+      {"years", 365.25 * 86400}, {"days", 86400}, {"hours", 3600}, {"minutes", 60}};
+  char text[64];
+  for (const Unit& unit : units)
+    if (seconds >= unit.seconds) {
+      std::snprintf(text, sizeof text, "%.2g %s", seconds / unit.seconds, unit.name);
+      return text;
+    }
+  std::snprintf(text, sizeof text, "%.2g s", seconds);
+  return text;
+}
+
+}  // namespace springlab
