@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <numeric>
 #include <string>
 #include <type_traits>
@@ -99,9 +100,13 @@ std::string overview() {
 
 // Parses a whole number or a real as from_chars does (no '+', no spaces, nothing after it);
 // NaN and infinities come back as parsed, for the range check to refuse them as written.
-bool parse_number(std::string_view text, double& out) {
+// Returns "" when it is a number, else what is wrong with the text.
+std::string parse_number(std::string_view text, double& out) {
   const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return error == std::errc{} && end == text.data() + text.size();
+  if (end != text.data() + text.size() || error == std::errc::invalid_argument)
+    return "not a number";
+  if (error == std::errc::result_out_of_range) return "beyond the range of a double";
+  return "";
 }
 
 // One field from text. Messages show the value as `written`, in quotes if `quote` (--set's
@@ -123,8 +128,9 @@ void set_field(const FieldInfo& info, T& value, std::string_view text, std::stri
     if (!parse_bool(text, value)) throw InvalidParameter(key, shown, "true or false");
   } else {
     double parsed = 0.0;
-    if (!parse_number(text, parsed))
-      throw InvalidParameter(key, shown, "a number: " + info.range.describe(info.key, info.unit));
+    if (const std::string wrong = parse_number(text, parsed); !wrong.empty())
+      throw InvalidParameter(key, shown,
+                             wrong + "; allowed " + info.range.describe(info.key, info.unit));
     check_range(info, parsed, written);  // a number as written, e.g. -3 N/m
     value = static_cast<T>(parsed);
   }
@@ -164,8 +170,11 @@ void validate(const SceneParameters& p) {
   if (particles < 2)
     throw InvalidParameter("rows x cols", std::to_string(p.rows) + " x " + std::to_string(p.cols),
                            "a grid needs at least 2 particles (1 x 2 or larger)");
-  // Before anything of the grid is allocated (select_particles lists particles, too).
-  check_memory(p, available_memory());
+  // Before anything of the grid is allocated (select_particles lists particles, too). The limits
+  // are read from /proc only for a run big enough to meet them (validate() runs at every
+  // change of a parameter; a process that could start at all has more than small_run).
+  constexpr double small_run = 64.0 * 1024 * 1024;  // B
+  if (estimated_bytes(p) > small_run) check_memory(p, available_memory());
   select_particles("pinned", p.pinned, p.rows, p.cols);
   select_particles("displaced", p.displaced, p.rows, p.cols);
   select_particles("pushed", p.pushed, p.rows, p.cols);
@@ -191,15 +200,19 @@ void set_assignment(SceneParameters& p, std::string_view assignment) {
 }
 
 std::string nearest_key(std::string_view key) {
+  // A typo changes a few letters; beyond a third of the key the guess would only mislead.
+  const int allowed = std::max(1, int(key.size()) / 3);
   std::string best;
-  int best_distance = 1 << 30;
+  int best_distance = allowed + 1;
   SceneParameters probe;
   for_each_field(probe, [&](const FieldInfo& info, auto&) {
+    // The distance is at least the difference in length: a long text is not compared letter by
+    // letter with every key (a pasted line, or a fuzzer's input).
+    if (std::abs(int(key.size()) - int(info.key.size())) > allowed) return;
     const int d = edit_distance(key, info.key);
     if (d < best_distance) best_distance = d, best = std::string(info.key);
   });
-  // A typo changes a few letters; beyond a third of the key the guess would only mislead.
-  return best_distance <= std::max(1, int(key.size()) / 3) ? best : std::string();
+  return best;
 }
 
 bool is_parameter_table(std::string_view name) {

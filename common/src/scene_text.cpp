@@ -254,9 +254,8 @@ class NestingScan {
   int key_segments_ = 1;
   bool key_position_ = true;
   bool key_started_ = false;
-  bool at_start_ = true;
-  bool in_bare_ = false;  // inside a bare value  // where a key or a value begins: only there a
-                          // quote opens a string
+  bool at_start_ = true;  // where a key or a value begins: only there a quote opens a string
+  bool in_bare_ = false;  // inside a bare value
   std::vector<Open> open_;
   int over_line_ = 0;
   int deepest_ = 0;

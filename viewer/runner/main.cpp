@@ -191,7 +191,7 @@ void print_stability_report(std::ostream& out, const SceneParameters& p,
     else
       value << "?";
     std::ostringstream line;
-    line << "    " << column(name, 16) << column(value.str(), 12) << column(how(limit.source), 17);
+    line << "    " << column(name, 16) << column(value.str(), 14) << column(how(limit.source), 20);
     const bool known = limit.source != LimitSource::not_computed;
     if (known && p.step >= limit.step) line << "  h EXCEEDS it: unstable";
     if (name == p.integrator) line << "  <- the scene's integrator";
