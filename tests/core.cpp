@@ -59,7 +59,7 @@ TEST_CASE("Parameters: grids smaller than 1x2 or too large for memory are reject
   p.rows = 1, p.cols = 1;
   CHECK_THAT(rejection([&] { validate(p); }), Contains("rows x cols = 1 x 1"));
   p.rows = max_grid_side, p.cols = max_grid_side;
-  CHECK_THAT(rejection([&] { validate(p); }), Contains("MiB with explicit-euler; the limit is"));
+  CHECK_THAT(rejection([&] { validate(p); }), Contains("MiB with explicit-euler; about"));
   p.rows = 2, p.cols = 1;  // a column of two is fine
   p.displaced = "1";
   CHECK_NOTHROW(validate(p));
@@ -295,19 +295,23 @@ TEST_CASE("Edits from outside: a moved particle restarts the integrator, a pinne
 }
 
 TEST_CASE("Memory guard: each integrator's estimate against an injected limit", "[core][memory]") {
-  // Issue 13: the guard assumed 1 KB a particle of physical memory; implicit Euler's fallback
-  // takes about 8.4 KB a particle (1.34 GB at 400x400) and ulimit -v was ignored.
+  // Issue 13: the guard assumed 1 KB a particle of physical memory and ignored ulimit -v. The
+  // estimates are compared with each integrator's measured peak by the runner's tests
+  // (runner.memory_estimate.*); here, what no estimate may leave out and the limit's use.
   SceneParameters p = task_scene(5);
   p.rows = p.cols = 400;
-  p.integrator = "implicit-euler";
-  const double implicit = estimated_bytes(p);
-  CHECK(implicit >= 1.2e9);  // measured 1.34 GB at 400x400 (issue 13)
+  const double particles = 400.0 * 400.0;
+  // At least the state a run cannot do without: r, v, force and acceleration (2 doubles each a
+  // particle), the mass, and every spring (two ints, a family, k, b, l0).
+  const double springs = double(build_scene(p, implementation()).springs.size());
+  const double floor = particles * (4 * 16 + 8) + springs * (2 * 4 + 4 + 3 * 8);
   for (const std::string& method : integrator_names()) {
     p.integrator = method;
     CAPTURE(method);
-    CHECK(estimated_bytes(p) <= implicit);
-    CHECK(estimated_bytes(p) >= 160000 * 500.0);  // measured 0.62 KiB a particle with RK4
+    CHECK(estimated_bytes(p) >= floor);
   }
+  // The fallback's factorisation fills in: more than A's own 2x2 blocks, 4 doubles a spring.
+  CHECK(factorisation_bytes(particles) > springs * 4 * 8);
   const MemoryLimit limit{400.0 * 1024 * 1024, "ulimit -v"};
   p.rows = p.cols = 1000;
   p.integrator = "explicit-euler";
@@ -318,15 +322,10 @@ TEST_CASE("Memory guard: each integrator's estimate against an injected limit", 
     const std::string text = error.what();
     CHECK_THAT(text, Contains("rows x cols"));
     CHECK_THAT(text, Contains("1000 x 1000"));
-    CHECK_THAT(text, Contains("MiB with explicit-euler; the limit is 400 MiB (ulimit -v)"));
+    CHECK_THAT(text, Contains("MiB with explicit-euler; about 400 MiB are free (ulimit -v)"));
   }
   p.rows = p.cols = 20;
   CHECK_NOTHROW(check_memory(p, limit));
-  p.rows = p.cols = 200;
-  p.integrator = "implicit-euler";  // about 300 MiB with its factorisation: fits
-  CHECK_NOTHROW(check_memory(p, limit));
-  p.rows = p.cols = 300;  // about 700 MiB: refused
-  CHECK_THROWS_AS(check_memory(p, limit), InvalidParameter);
 }
 
 TEST_CASE("Memory guard: the process's limit is found", "[core][memory]") {

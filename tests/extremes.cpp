@@ -321,3 +321,24 @@ TEST_CASE("Extremes: the stability theory rejects unknown integrators", "[extrem
   CHECK_THROWS_AS(critical_step(model, "rk5"), InvalidParameter);
   CHECK_THROWS_AS(step_matrix(model, "rk5", 0.01), InvalidParameter);
 }
+
+TEST_CASE("Extremes: a free fall of a million large steps is no runaway", "[extremes][gravity]") {
+  // Issue 13 (a tester's find): RK4 integrates a free fall exactly, but the total energy is then
+  // the difference of two terms near 6e20 J, and its rounding (about 1e5 J) passed the limit of
+  // 1e4 times the reference energy at t = 7.6e6 s: a divergence reported on an exact run.
+  SceneParameters p = task_scene(1);
+  p.structural.enabled = false;
+  p.displaced = "none";
+  p.gravity.enabled = true;
+  p.gravity.acceleration = Vec2(0.0, -1e4);
+  p.integrator = "rk4";
+  p.step = 10.0;
+  Simulation sim(p, implementation());
+  const double y0 = sim.particles().position(1, 0);
+  const long steps = 1000000;
+  CHECK_NOTHROW(sim.advance(steps));
+  CHECK_NOTHROW(sim.check());
+  // Exact: the fall from rest is g t^2 / 2, to rounding.
+  const double t = double(steps) * p.step;
+  CHECK_THAT((sim.particles().position(1, 0) - y0) / (-0.5 * 1e4 * t * t), WithinAbs(1.0, 1e-9));
+}

@@ -1,6 +1,7 @@
 #include "springlab/cli_values.hpp"
 
 #include "springlab/errors.hpp"
+#include "springlab/scene_text.hpp"
 
 #include <charconv>
 #include <cstdio>
@@ -11,12 +12,16 @@ namespace springlab {
 double option_number(std::string_view option, std::string_view text, const Range& range,
                      std::string_view unit) {
   const std::string name(option.substr(option.find_first_not_of('-')));
-  const std::string shown = "\"" + std::string(text) + "\"";
+  const std::string shown = quoted_for_terminal(text);
   // "+2" is a number to a person; from_chars takes only "-" for a sign.
   std::string_view digits = text;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
   double value = 0.0;
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (!digits.empty() && error == std::errc::result_out_of_range &&
+      end == digits.data() + digits.size())
+    throw InvalidParameter(std::string(option), shown,
+                           "beyond the range of a double; allowed " + range.describe(name, unit));
   if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size())
     throw InvalidParameter(std::string(option), shown,
                            "not a number; allowed " + range.describe(name, unit));
@@ -34,6 +39,24 @@ Range parameter_range(std::string_view key) {
   });
   if (!known) throw std::logic_error("no scene parameter " + std::string(key));
   return found;
+}
+
+void refuse_double_settings(const std::vector<std::string>& assignments,
+                            std::initializer_list<OptionSetting> options) {
+  for (const std::string& assignment : assignments) {
+    const std::string_view key = std::string_view(assignment).substr(0, assignment.find('='));
+    for (const OptionSetting& o : options)
+      if (o.given && key == o.key)
+        throw InvalidParameter("--set", quoted_for_terminal(assignment),
+                               "not together with " + std::string(o.option) + ", which sets " +
+                                   std::string(o.key) + " too: give one of the two");
+  }
+}
+
+void refuse_empty_path(std::string_view option, std::string_view path) {
+  if (path.empty())
+    throw InvalidParameter(std::string(option), "\"\"",
+                           "a file name (an empty one writes nothing)");
 }
 
 std::string duration_in_words(double seconds) {

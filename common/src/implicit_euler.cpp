@@ -22,6 +22,7 @@
 #include "integrators.hpp"
 #include "spring_matrices.hpp"
 #include "springlab/errors.hpp"
+#include "springlab/memory_budget.hpp"
 
 #include <Eigen/SparseCholesky>
 
@@ -190,6 +191,20 @@ void ImplicitEuler::build_pattern(const Model& model) {
 // A x = b by a sparse LDLᵀ factorisation of A assembled at r_n (b and x: one column a particle).
 Vectors ImplicitEuler::solve_directly(const Model& model, const Vectors& r, double h,
                                       const Vectors& b) {
+  // The factorisation is the run's largest allocation by far, and the up-front guard does not
+  // count it (most runs never need it): it is checked now, before anything of it is built.
+  if (!analysed_) {
+    const MemoryLimit limit = available_memory();
+    if (const double needed = factorisation_bytes(double(free_.size())); needed > limit.bytes)
+      throw InvalidParameter(
+          "free particles", std::to_string(free_.size()),
+          "implicit-euler's conjugate gradients did not converge in 100 iterations, and the "
+          "direct solver that takes over would need " +
+              mebibytes_text(needed) + "; " + mebibytes_text(limit.bytes) + " are free (" +
+              limit.source +
+              "): make h smaller (the step's matrix is then closer to M and conjugate gradients "
+              "converge) or the grid smaller");
+  }
   if (!pattern_built_) build_pattern(model);
   Eigen::Map<Eigen::VectorXd> values(matrix_.valuePtr(), matrix_.nonZeros());
   values = mass_values_ + h * damping_values_;

@@ -44,9 +44,13 @@ double integrator_bytes_per_particle(const std::string& integrator) {
 // up, the factorisation runs), whole process: 7.8 KiB a particle at 100x100 (78 MB), 7.8 at
 // 200x200 (312 MB), 9.2 at 300x300 (846 MB); 8.4 at 400x400 in issue 13. Modelled as
 // 7 + 0.35 log2(n/1e4) KiB a particle on top of the rest (300x300: 850 MB estimated).
+}  // namespace
+
 double factorisation_bytes(double particles) {
   return particles * kib * (7.0 + 0.35 * std::max(0.0, std::log2(particles / 1e4)));
 }
+
+namespace {
 
 // "/sys/fs/cgroup/…" limit less usage for the process's own cgroup, v2 or v1.
 double read_number(const std::string& path) {
@@ -114,6 +118,10 @@ std::string mebibytes(double bytes) {
 
 }  // namespace
 
+std::string mebibytes_text(double bytes) {
+  return "about " + mebibytes(bytes) + " MiB";
+}
+
 MemoryLimit available_memory() {
   MemoryLimit best{physical_available(), "physical memory"};
   const auto consider = [&](double bytes, const char* source) {
@@ -132,11 +140,11 @@ double estimated_bytes(const SceneParameters& p) {
   // Measured (max RSS of springlab-run, task5, about 6 springs a particle): RK4 and explicit
   // Euler 0.62 KiB a particle at 200x200 (estimate 0.73), 0.52 at 1000x1000 (0.75); Verlet
   // 0.51 at 1000x1000 (0.72); velocity Verlet 0.95 at 200x200 (0.97); implicit Euler with CG
-  // alone 0.97 (its estimate adds the fallback's factorisation). High rather than low.
+  // alone 0.97 (300x300: 102 MiB, estimate 103). High rather than low.
   double bytes =
       8 * mib + particles * (136 + integrator_bytes_per_particle(p.integrator)) + springs * 80;
   if (p.integrator == "velocity-verlet") bytes += 16 * springs;  // its dampers
-  if (p.integrator == "implicit-euler") bytes += 24 * springs + factorisation_bytes(particles);
+  if (p.integrator == "implicit-euler") bytes += 24 * springs;
   return bytes;
 }
 
@@ -145,8 +153,8 @@ void check_memory(const SceneParameters& p, const MemoryLimit& limit) {
   if (needed <= limit.bytes) return;
   throw InvalidParameter("rows x cols", std::to_string(p.rows) + " x " + std::to_string(p.cols),
                          "needs about " + mebibytes(needed) + " MiB with " + p.integrator +
-                             "; the limit is " + mebibytes(limit.bytes) + " MiB (" + limit.source +
-                             "): make the grid smaller");
+                             "; about " + mebibytes(limit.bytes) + " MiB are free (" +
+                             limit.source + "): make the grid smaller");
 }
 
 void throw_out_of_memory(const SceneParameters& p, const std::string& when) {

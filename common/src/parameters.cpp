@@ -123,6 +123,10 @@ void set_field(const FieldInfo& info, T& value, std::string_view text, std::stri
     if (has_control_character(text))
       throw InvalidParameter(key, shown,
                              "control characters (such as ESC or a line end) are not allowed");
+    if (!is_utf8(text)) throw InvalidParameter(key, printable(shown), "text in UTF-8");
+    if (text.size() > max_text_bytes)
+      throw InvalidParameter(key, "(" + std::to_string(text.size()) + " bytes of text)",
+                             "at most " + std::to_string(max_text_bytes) + " bytes");
     value = std::string(text);
   } else if constexpr (std::is_same_v<T, bool>) {
     if (!parse_bool(text, value)) throw InvalidParameter(key, shown, "true or false");

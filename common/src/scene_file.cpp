@@ -166,13 +166,21 @@ void apply(const Source& source, const Entry& entry, SceneParameters& p) {
 }  // namespace
 
 SceneParameters load_scene_file(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path))
-    throw InvalidParameter("scene", "\"" + path + "\"",
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(path, error))
+    throw InvalidParameter("scene", quoted_for_terminal(path),
                            "task1 ... task5 or the path of a readable scene file");
+  // A scene is a few hundred bytes: a huge file is a mistake, and reading it whole could exhaust
+  // the memory before a word is said.
+  const auto size = std::filesystem::file_size(path, error);
+  if (!error && size > max_scene_file_bytes)
+    throw InvalidParameter("scene", quoted_for_terminal(path),
+                           "a scene file of at most " + std::to_string(max_scene_file_bytes) +
+                               " bytes; this one has " + std::to_string(size));
   std::ifstream file(path);
   std::ostringstream text;
   text << file.rdbuf();
-  if (!file) throw InvalidParameter("scene", "\"" + path + "\"", "a readable scene file");
+  if (!file) throw InvalidParameter("scene", quoted_for_terminal(path), "a readable scene file");
   return parse_scene(text.str(), path);
 }
 

@@ -268,6 +268,16 @@ void check_scene_text(std::string_view text, const std::string& path) {
   NestingScan(text, path).run();
 }
 
+bool is_utf8(std::string_view text) {
+  for (std::size_t at = 0; at < text.size();) {
+    char32_t c = 0;
+    const std::size_t length = decode(text, at, c);
+    if (length == 0) return false;
+    at += length;
+  }
+  return true;
+}
+
 bool has_control_character(std::string_view text) {
   for (std::size_t at = 0; at < text.size(); ++at) {
     const unsigned char b = static_cast<unsigned char>(text[at]);
@@ -294,6 +304,18 @@ std::string printable(std::string_view text) {
       std::snprintf(code, sizeof code, "\\x%02X", unsigned(b));
     out += code;
   }
+  return out;
+}
+
+std::string printable_lines(std::string_view text) {
+  std::string out;
+  std::size_t start = 0;
+  for (std::size_t at = 0; at <= text.size(); ++at)
+    if (at == text.size() || text[at] == '\n' || text[at] == '\t') {
+      out += printable(text.substr(start, at - start));
+      if (at < text.size()) out += text[at];
+      start = at + 1;
+    }
   return out;
 }
 

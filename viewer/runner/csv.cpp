@@ -42,6 +42,7 @@ void write_csv_row(std::ostream& out, const Simulation& simulation) {
 }  // namespace springlab
 
 #include "springlab/errors.hpp"
+#include "springlab/scene_text.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -52,7 +53,7 @@ namespace springlab {
 
 CsvOutput::CsvOutput(const std::string& path)
     : stream_(path == "-" ? &std::cout : &file_),
-      shown_(path == "-" ? "standard output" : "\"" + path + "\"") {
+      shown_(path == "-" ? "standard output" : quoted_for_terminal(path)) {
   if (path == "-") return;
   errno = 0;
   file_.open(path);
@@ -67,7 +68,9 @@ bool CsvOutput::to_stdout() const {
 }
 
 void CsvOutput::start(const Simulation& simulation) {
+  errno = 0;
   write_csv_header(*stream_, simulation.particles().size());
+  check(simulation);  // before row() clears errno: the header may be what failed
   row(simulation);
 }
 
@@ -91,8 +94,8 @@ void CsvOutput::check(const Simulation& simulation) {
   std::ostringstream message;
   message << "the CSV could not be written to " << shown_;
   if (errno) message << " (" << std::strerror(errno) << ")";
-  message << ": it failed after " << rows_
-          << " rows, and the run stopped at t = " << simulation.time() << " s";
+  message << ": it failed after " << rows_ << (rows_ == 1 ? " row" : " rows")
+          << ", and the run stopped at t = " << simulation.time() << " s";
   throw WriteFailed(message.str());
 }
 

@@ -8,17 +8,21 @@
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
+#include "springlab/memory_budget.hpp"
 #include "springlab/scene.hpp"
+#include "springlab/scene_text.hpp"
 #include "springlab/simulation.hpp"
 #include "springlab/stability.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
@@ -41,13 +45,18 @@ struct Options {
   std::optional<std::string> dt, duration;
   std::vector<std::string> sets;
   std::string every = "1";
-  std::string csv;
+  std::optional<std::string> csv;  // empty when not given; "" given is an error
   bool quiet = false;
   bool stability = false;
   bool estimate = false;
 };
 
 SceneParameters scene_from(const Options& options) {
+  if (options.impl != "reference" && options.impl != "student")
+    throw InvalidParameter("--impl", quoted_for_terminal(options.impl), "reference or student");
+  refuse_double_settings(options.sets, {{"--integrator", "integrator", bool(options.integrator)},
+                                        {"--dt", "step", bool(options.dt)},
+                                        {"--duration", "duration", bool(options.duration)}});
   SceneParameters p = load_scene(options.scene);
   if (options.integrator) set_parameter(p, "integrator", *options.integrator);
   if (options.dt)
@@ -86,6 +95,13 @@ std::string parameter_list() {
   return out.str();
 }
 
+// The most memory this process has had resident so far, MiB.
+long peak_resident_mib() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return std::lround(double(usage.ru_maxrss) / 1024.0);  // ru_maxrss is in KiB on Linux
+}
+
 std::string counted(std::size_t n, const std::string& thing) {
   return std::to_string(n) + " " + thing + (n == 1 ? "" : "s");
 }
@@ -106,16 +122,20 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
                    double seconds) {
   const Diagnostics end = sim.diagnostics();
   const SceneParameters& p = sim.parameters();
-  out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, "
+  const bool factorised = sim.integrator().solver_work().factorisations > 0;
+  out << "scene " << printable(p.name) << ": " << p.rows << "x" << p.cols << " grid, "
       << counted(sim.particles().size(), "particle") << ", "
       << counted(sim.scene().springs.size(), "spring") << "\n"
       << "code: " << code_name(sim.implementation()) << "; integrator " << p.integrator
-      << ", h = " << p.step << " s, " << sim.steps_taken() << " steps to t = " << sim.time()
-      << " s\n"
+      << ", h = " << p.step << " s, " << counted(std::size_t(sim.steps_taken()), "step")
+      << " to t = " << sim.time() << " s\n"
       << "energy " << start.total() << " J -> " << end.total() << " J ("
       << energy_parts(end, p.gravity.enabled) << "); momentum (" << end.momentum.x() << ", "
       << end.momentum.y() << ") kg*m/s\n"
-      << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time\n";
+      << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time\n"
+      << "memory: " << peak_resident_mib() << " MiB at most in use (resident), "
+      << mebibytes_text(estimated_bytes(p)) << " estimated before the run"
+      << (factorised ? " (without the factorisation implicit-euler's fallback made)" : "") << '\n';
 }
 
 // The step limit of the run's method on its scene, from the linearised equations at rest.
@@ -234,10 +254,11 @@ long every_from(const Options& options) {
 // anything is opened.
 void refuse_the_scene_file(const Options& options) {
   std::error_code error;
-  if (!options.csv.empty() && options.csv != "-" &&
-      std::filesystem::equivalent(options.csv, options.scene, error))
+  if (!options.csv) return;
+  refuse_empty_path("--csv", *options.csv);
+  if (*options.csv != "-" && std::filesystem::equivalent(*options.csv, options.scene, error))
     throw InvalidParameter(
-        "--csv", "\"" + options.csv + "\"",
+        "--csv", quoted_for_terminal(*options.csv),
         "not the scene file: writing the CSV would overwrite the scene " + options.scene);
 }
 
@@ -297,7 +318,7 @@ int run(const Options& options) {
   const long steps = steps_for(p);
   if (options.estimate) return print_estimate(sim, steps);
   std::optional<CsvOutput> csv;
-  if (!options.csv.empty()) csv.emplace(options.csv);
+  if (options.csv) csv.emplace(*options.csv);
   std::ostream& report = csv && csv->to_stdout() ? std::cerr : std::cout;
   if (csv) csv->start(sim);
 
@@ -321,6 +342,14 @@ int run(const Options& options) {
     print_stability(report, p);
   }
   return done;
+}
+
+// What running out of memory during a run becomes when no step caught it (building a large
+// scene's stability report, say): what is free and under which limit.
+std::string out_of_memory() {
+  const MemoryLimit limit = available_memory();
+  return "ran out of memory; " + mebibytes_text(limit.bytes) + " are free now (" + limit.source +
+         "): make the grid smaller, or allow the process more memory";
 }
 
 // Standard output lost (a full disk, a closed pipe): an error, not a silent exit 0.
@@ -347,7 +376,6 @@ int main(int argc, char** argv) {
   app.add_option("--scene", options.scene, "task1 ... task5 or a scene file (TOML)")
       ->capture_default_str();
   app.add_option("--impl", options.impl, "whose code runs: the reference or the student's")
-      ->check(CLI::IsMember({"reference", "student"}))
       ->capture_default_str();
   app.add_option("--integrator", options.integrator,
                  "explicit-euler, symplectic-euler, verlet, velocity-verlet, rk4 or "
@@ -364,30 +392,40 @@ int main(int argc, char** argv) {
   app.add_flag("--stability", options.stability,
                "print omega_max and every integrator's critical step for the scene, and stop");
   app.footer(parameter_list() + exit_codes);
+  // A closed pipe (springlab-run --csv - | head) is then a write error, said and exit 6, rather
+  // than a death by signal with no word.
+  std::signal(SIGPIPE, SIG_IGN);
+  // Every message quotes what the user wrote: its control characters are shown, never obeyed.
+  const auto say = [](const std::string& message) {
+    std::cerr << "springlab-run: " << printable_lines(message) << '\n';
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& help) {
-    return app.exit(help);
+    return checked_stdout(app.exit(help));
   } catch (const CLI::ParseError& error) {
-    std::cerr << "springlab-run: " << error.what() << " (springlab-run --help lists the options)\n";
+    say(std::string(error.what()) + " (springlab-run --help lists the options)");
     return bad_input;
   }
   try {
     return checked_stdout(run(options));
   } catch (const WriteFailed& error) {
-    std::cerr << "springlab-run: " << error.what() << '\n';
+    say(error.what());
     return lost_output;
   } catch (const InvalidParameter& error) {
-    std::cerr << "springlab-run: " << error.what() << '\n';
+    say(error.what());
     return bad_input;
   } catch (const DivergenceError& error) {
-    std::cerr << "springlab-run: " << error.what() << '\n';
+    say(error.what());
     return diverged;
   } catch (const NotImplemented& error) {
-    std::cerr << "springlab-run: " << error.what() << '\n';
+    say(error.what());
     return not_written;
+  } catch (const std::bad_alloc&) {
+    say(out_of_memory());
+    return bad_input;
   } catch (const std::exception& error) {
-    std::cerr << "springlab-run: the run stopped on an unexpected error: " << error.what() << '\n';
+    say(std::string("the run stopped on an unexpected error: ") + error.what());
     return failed;
   }
 }

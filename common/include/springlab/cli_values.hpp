@@ -4,8 +4,10 @@
 
 #include "springlab/parameters.hpp"
 
+#include <initializer_list>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace springlab {
 
@@ -18,6 +20,23 @@ double option_number(std::string_view option, std::string_view text, const Range
 
 /// The range of the scene parameter `key` (e.g. "step"), for an option that sets it.
 Range parameter_range(std::string_view key);
+
+/// An option that sets a scene parameter, e.g. --dt sets "step", and whether the user gave it.
+struct OptionSetting {
+  std::string_view option;  ///< e.g. "--dt"
+  std::string_view key;     ///< the parameter it sets, e.g. "step"
+  bool given = false;
+};
+
+/// Throws InvalidParameter when one of `assignments` (--set KEY=VALUE) names the parameter of an
+/// option the user also gave ("--dt 0.03 --set step=0.001"): which of the two should win would
+/// be a guess, so neither does.
+void refuse_double_settings(const std::vector<std::string>& assignments,
+                            std::initializer_list<OptionSetting> options);
+
+/// Throws InvalidParameter naming `option` when `path` is empty: an empty file name is a slip
+/// (an unset shell variable), not a wish for no output.
+void refuse_empty_path(std::string_view option, std::string_view path);
 
 /// How long `seconds` of wall time is, in words a person reads at a glance: "45 s",
 /// "12 minutes", "3.4 hours", "2.3 days", "14 years".

@@ -20,10 +20,18 @@ struct MemoryLimit {
 MemoryLimit available_memory();
 
 /// About how many bytes a run of scene p with p.integrator needs at its peak: the particles,
-/// the springs, the simulation's buffers and the integrator's (implicit Euler's sparse
-/// factorisation included, which its fallback solver may need at any step). From the data
-/// structures, checked against the maximum resident size of springlab-run (memory_budget.cpp).
+/// the springs, the simulation's buffers and the integrator's (for implicit Euler, its
+/// conjugate gradients: the fallback's factorisation, needed only when they fail, checks its
+/// own memory when it comes, see factorisation_bytes). From the data structures, checked against
+/// the maximum resident size of springlab-run (memory_budget.cpp).
 double estimated_bytes(const SceneParameters& p);
+
+/// About how many bytes implicit Euler's fallback (a sparse LDLT of M + hC + h^2 K over
+/// `free_particles` particles) needs beside the rest of the run.
+double factorisation_bytes(double free_particles);
+
+/// "about N MiB", for messages.
+std::string mebibytes_text(double bytes);
 
 /// Throws InvalidParameter (field "rows x cols") when estimated_bytes(p) exceeds limit.bytes.
 void check_memory(const SceneParameters& p, const MemoryLimit& limit);

@@ -75,7 +75,7 @@ struct Range {
   bool integer = false;
 
   bool contains(double value) const;  ///< false for NaN and infinities
-  /// As text, e.g. "0 < mass <= 1e+09 kg".
+  /// As text, e.g. "1e-06 <= mass <= 1e+09 kg".
   std::string describe(std::string_view key, std::string_view unit) const;
 };
 
@@ -87,15 +87,19 @@ struct FieldInfo {
   Range range;               ///< allowed values of a numeric field
 };
 
-inline constexpr int max_grid_side = 100000;  ///< particles along one side of a grid
-inline constexpr double max_steps = 1e10;     ///< steps in one run (duration / step)
+inline constexpr int max_grid_side = 100000;         ///< particles along one side of a grid
+inline constexpr double max_steps = 1e10;            ///< steps in one run (duration / step)
+inline constexpr std::size_t max_text_bytes = 4096;  ///< of a text field (name, pinned, …)
 
 /// Calls visit(info, value) for every field of p, where value is an int&, double&, bool& or
 /// std::string& (const when p is const). The one list of every scene parameter.
 template <class Params, class Visitor>
 void for_each_field(Params& p, Visitor&& visit) {
   constexpr double big = 1e9;
-  const Range positive{0.0, big, true};
+  // Masses and lengths from a micrometre and a microgram up: below that, k/m and forces over
+  // lengths leave the range of doubles (a subnormal mass passed a check of "> 0" and made
+  // every frequency infinite).
+  const Range positive{1e-6, big};
   const Range non_negative{0.0, big};
   const Range any_length{-1e6, 1e6};
   const Range side{1, max_grid_side, false, false, true};

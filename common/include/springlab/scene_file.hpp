@@ -11,10 +11,14 @@
 
 #include "springlab/parameters.hpp"
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
 namespace springlab {
+
+/// The largest scene file read, bytes: the lab's scenes have a few hundred.
+inline constexpr std::uintmax_t max_scene_file_bytes = 1 << 20;
 
 /// Reads a scene file. Throws InvalidParameter whose message names the file, the line and the
 /// key: for TOML syntax errors, unknown keys (with the nearest known one) and bad values.

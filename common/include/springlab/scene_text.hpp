@@ -25,8 +25,14 @@ void check_scene_text(std::string_view text, const std::string& path);
 /// obeying them (ESC starts a terminal command).
 std::string printable(std::string_view text);
 
+/// printable(text), but line ends and tabs kept: for a whole message of several lines.
+std::string printable_lines(std::string_view text);
+
 /// printable(text) in double quotes.
 std::string quoted_for_terminal(std::string_view text);
+
+/// Whether `text` is valid UTF-8 (no overlong forms, surrogates or values above U+10FFFF).
+bool is_utf8(std::string_view text);
 
 /// Whether `text` (UTF-8) has a control character: C0, DEL or C1 (U+0080 to U+009F).
 bool has_control_character(std::string_view text);

@@ -76,6 +76,7 @@ class Simulation {
   const SceneParameters& parameters() const { return scene_.parameters; }
   const Implementation& implementation() const { return *impl_; }
   Integrator& integrator() { return *integrator_; }
+  const Integrator& integrator() const { return *integrator_; }
   /// Energies (gravity's measured from the start positions) and momenta of the current state.
   Diagnostics diagnostics() const;
   double reference_energy() const { return reference_energy_; }  ///< J, see DivergenceLimits
