@@ -83,6 +83,17 @@ TEST_CASE("Scene files: text that toml++ 3.3.0 mishandles is refused before it r
   CHECK(parse_scene("name = \"Tr\xC3\xA4gheit\" # \xC3\xA2\n", "s.toml").name == "Tr\xC3\xA4gheit");
 }
 
+TEST_CASE("Scene files: a number TOML cannot hold says what the key allows",
+          "[core][scene-input]") {
+  // toml++'s own words name the syntax only; the kit adds the parameter's range.
+  CHECK_THAT(
+      scene_rejection("mass = 1e999\n"),
+      Contains("s.toml:1") && Contains("1e999") && Contains("; allowed 1e-06 <= mass <= 1e+09 kg"));
+  CHECK_THAT(scene_rejection("cols = 2\n  rows =99999999999999999999999\n"),
+             Contains("s.toml:2") && Contains("; allowed 1 <= rows <= 1e+05 (a whole number)"));
+  CHECK_THAT(scene_rejection("title = 1e999\n"), !Contains("allowed"));  // no such parameter
+}
+
 TEST_CASE("Scene files: values are quoted as the file writes them", "[core][scene-input]") {
   CHECK_THAT(scene_rejection("mas = 0.20000000000000001\n"),
              Contains("s.toml:1: mas = 0.20000000000000001 (a number)"));

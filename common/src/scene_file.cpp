@@ -17,7 +17,7 @@ namespace springlab {
 namespace {
 
 std::string place(const std::string& path, const toml::source_region& where) {
-  return path + ":" + std::to_string(where.begin.line);
+  return printable(path) + ":" + std::to_string(where.begin.line);
 }
 
 std::string kind_of(const toml::node& node) {
@@ -163,6 +163,33 @@ void apply(const Source& source, const Entry& entry, SceneParameters& p) {
   }
 }
 
+// For a syntax error on a line "KEY = VALUE" whose KEY is a numeric parameter (a number beyond a
+// double's or an integer's range, say): what KEY allows, which toml++'s own words do not say.
+std::string range_hint(std::string_view text, toml::source_index line) {
+  std::size_t begin = 0;
+  for (toml::source_index n = 1; n < line; ++n) {
+    const std::size_t end = text.find('\n', begin);
+    if (end == std::string_view::npos) return "";
+    begin = end + 1;
+  }
+  const std::string_view line_text = text.substr(begin, text.find('\n', begin) - begin);
+  const std::size_t equals = line_text.find('=');
+  if (equals == std::string_view::npos) return "";
+  std::string_view key = line_text.substr(0, equals);
+  while (!key.empty() && (key.front() == ' ' || key.front() == '\t'))
+    key.remove_prefix(1);
+  while (!key.empty() && (key.back() == ' ' || key.back() == '\t'))
+    key.remove_suffix(1);
+  std::string hint;
+  const SceneParameters defaults;
+  for_each_field(defaults, [&](const FieldInfo& info, const auto& value) {
+    using T = std::decay_t<decltype(value)>;
+    if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>)
+      if (info.key == key) hint = "; allowed " + info.range.describe(info.key, info.unit);
+  });
+  return hint;
+}
+
 }  // namespace
 
 SceneParameters load_scene_file(const std::string& path) {
@@ -190,8 +217,9 @@ SceneParameters parse_scene(std::string_view text, const std::string& path) {
   try {
     table = toml::parse(text, path);
   } catch (const toml::parse_error& error) {
-    throw InvalidParameter(place(path, error.source()), "(syntax)",
-                           std::string(error.description()));
+    throw InvalidParameter(
+        place(path, error.source()), "(syntax)",
+        std::string(error.description()) + range_hint(text, error.source().begin.line));
   }
   SceneParameters p;
   p.name = path;
