@@ -3,8 +3,10 @@
 #include "springlab/errors.hpp"
 #include "springlab/scene_text.hpp"
 
+#include <cerrno>
 #include <charconv>
 #include <cstdio>
+#include <cstring>
 #include <stdexcept>
 
 namespace springlab {
@@ -57,6 +59,15 @@ void refuse_empty_path(std::string_view option, std::string_view path) {
   if (path.empty())
     throw InvalidParameter(std::string(option), "\"\"",
                            "a file name (an empty one writes nothing)");
+}
+
+std::string flush_failure(std::ostream& out) {
+  errno = 0;
+  out.flush();
+  if (out.good()) return "";
+  const int reason = errno;  // read at once: what follows may change it
+  return std::string("standard output could not be written") +
+         (reason ? std::string(" (") + std::strerror(reason) + ")" : std::string());
 }
 
 std::string duration_in_words(double seconds) {

@@ -118,6 +118,10 @@ std::string mebibytes(double bytes) {
 
 }  // namespace
 
+double address_space_in_use() {
+  return proc_field("/proc/self/status", "VmSize");
+}
+
 std::string mebibytes_text(double bytes) {
   return "about " + mebibytes(bytes) + " MiB";
 }

@@ -1,5 +1,7 @@
 #include "gui/display.hpp"
 
+#include "springlab/scene_text.hpp"
+
 #include <X11/Xlib.h>
 
 #include <cstdlib>
@@ -16,7 +18,7 @@ bool display_reachable(std::ostream& out) {
   }
   Display* display = XOpenDisplay(nullptr);
   if (!display) {
-    out << "springlab-view: the display \"" << name << "\" cannot be opened.\n";
+    out << "springlab-view: the display " << quoted_for_terminal(name) << " cannot be opened.\n";
     return false;
   }
   // Held open until the program ends: were it the server's only client, closing it would make

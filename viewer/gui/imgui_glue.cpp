@@ -4,6 +4,8 @@
 #include <imgui_impl_opengl2.h>
 
 #include <cfloat>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 namespace springlab::view {
@@ -61,6 +63,27 @@ void map_keys(ImGuiIO& io) {
   io.KeyMap[ImGuiKey_Z] = sf::Keyboard::Z;
 }
 
+// ImGui writes through what its allocator returns without looking: a null (a limit of `ulimit -v`
+// reached while it builds its font atlas) was a segmentation fault or a corrupted heap. Out of
+// memory, the program ends here with a message and exit 2 (the kit's code for a limit a run does
+// not fit in), before ImGui can touch memory it does not have. No allocation on this path: the
+// message is formatted on the stack, and std::_Exit runs no destructor of a half-built window.
+void* allocate(std::size_t size, void*) {
+  if (void* memory = std::malloc(size)) return memory;
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "springlab-view: out of memory: the window's panel (Dear ImGui) could not get %zu "
+                "more bytes; allow the process more memory (ulimit -v, ulimit -d) or make the "
+                "window smaller (--size)\n",
+                size);
+  std::fputs(line, stderr);
+  std::_Exit(2);
+}
+
+void release(void* memory, void*) {
+  std::free(memory);
+}
+
 void set_modifiers(ImGuiIO& io, const sf::Event::KeyEvent& key) {
   io.KeyCtrl = key.control;
   io.KeyShift = key.shift;
@@ -72,6 +95,7 @@ void set_modifiers(ImGuiIO& io, const sf::Event::KeyEvent& key) {
 
 ImGuiGlue::ImGuiGlue(sf::RenderWindow& window) : window_(window) {
   IMGUI_CHECKVERSION();
+  ImGui::SetAllocatorFunctions(allocate, release);  // before the context: it is allocated too
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini left in the student's directory

@@ -1,7 +1,8 @@
 // springlab-view: the 2D viewer. Interactive by default; with --frames, --screenshot, --record or
 // --benchmark it runs a fixed number of frames with no user input (under xvfb-run on a machine
 // without a display). Exit codes as springlab-run's (0 done, 1 failed, 2 bad input, 3 diverged,
-// 4 a task not written yet), and 5 when there is no display to open a window on.
+// 4 a task not written yet, 6 the output could not be written), and 5 when there is no display to
+// open a window on.
 #include "gui/app.hpp"
 #include "gui/display.hpp"
 #include "gui/runs.hpp"
@@ -9,18 +10,28 @@
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
+#include "springlab/memory_budget.hpp"
 #include "springlab/scene.hpp"
+#include "springlab/scene_text.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <fcntl.h>
+#include <malloc.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <new>
 #include <optional>
 
 namespace {
@@ -28,7 +39,13 @@ namespace {
 using namespace springlab;
 using namespace springlab::view;
 
-constexpr int bad_input = 2, no_display = 5;
+enum Exit { done = 0, failed = 1, bad_input = 2, no_display = 5, lost_output = 6 };
+
+// Input refused in words of its own (not "option = value: allowed ..."): exit 2.
+class Refused : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 struct Options {
   AppOptions app;
@@ -41,6 +58,7 @@ struct Options {
   std::optional<double> real_time_factor_value;
   std::optional<int> steps_per_frame_value;
   std::vector<std::string> sets;
+  std::optional<std::string> screenshot, record;  // as given: "" is a slip, not "none"
   std::string size = "1280x800";
   bool paused = false;
 };
@@ -53,7 +71,7 @@ void parse_size(const std::string& text, AppOptions& app) {
                   std::from_chars(text.data(), text.data() + x, width).ptr == text.data() + x &&
                   std::from_chars(text.data() + x + 1, end, height).ptr == end;
   if (!ok || width < 640 || width > 8192 || height < 400 || height > 8192)
-    throw InvalidParameter("--size", "\"" + text + "\"",
+    throw InvalidParameter("--size", quoted_for_terminal(text),
                            "WIDTHxHEIGHT in pixels, 640 <= WIDTH <= 8192, 400 <= HEIGHT <= 8192");
   app.width = width;
   app.height = height;
@@ -61,6 +79,10 @@ void parse_size(const std::string& text, AppOptions& app) {
 
 // The scene as the options ask for it, checked before a window opens.
 SceneParameters scene_from(const Options& options) {
+  // An option and a --set of the same parameter: which should win would be a guess.
+  refuse_double_settings(options.sets,
+                         {{"--dt", "step", options.dt.has_value()},
+                          {"--integrator", "integrator", options.integrator.has_value()}});
   SceneParameters p = load_scene(options.app.scene);
   if (options.integrator) set_parameter(p, "integrator", *options.integrator);
   if (options.dt)
@@ -91,22 +113,44 @@ void check_folder(const char* option, const std::string& path,
   std::error_code error;
   if (!std::filesystem::is_directory(where, error) || access(where.c_str(), W_OK) != 0)
     throw InvalidParameter(
-        option, "\"" + path + "\"",
+        option, quoted_for_terminal(path),
         "a path in a folder that exists and can be written (" + where.string() + " is not)");
 }
 
+// Proves that the screenshot can be written by opening it as SFML will, before the first frame
+// rather than after the last (where SFML's "Failed to save image" did not name the option). A
+// file there already is opened without being truncated; one made for the proof is removed again.
+void check_writable(const char* option, const std::string& path) {
+  const int flags = O_WRONLY | O_NONBLOCK | O_CLOEXEC;  // O_NONBLOCK: a FIFO does not hang here
+  int fd = open(path.c_str(), flags | O_CREAT | O_EXCL, 0666);
+  const bool made = fd >= 0;
+  if (!made && errno == EEXIST) fd = open(path.c_str(), flags);
+  if (fd < 0)
+    throw InvalidParameter(
+        option, quoted_for_terminal(path),
+        std::string("a file that can be written (") + std::strerror(errno) + ")");
+  close(fd);
+  if (made) unlink(path.c_str());
+}
+
 // --screenshot and --record, checked before the first frame rather than after the last.
-void check_outputs(const RunOptions& run) {
+void check_outputs(Options& options) {
+  RunOptions& run = options.run;
+  if (options.screenshot) refuse_empty_path("--screenshot", *options.screenshot);
+  if (options.record) refuse_empty_path("--record", *options.record);
+  run.screenshot = options.screenshot.value_or("");
+  run.record = options.record.value_or("");
   if (!run.screenshot.empty()) {
     std::string extension = std::filesystem::path(run.screenshot).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
     if (extension != ".png" && extension != ".bmp" && extension != ".tga" && extension != ".jpg" &&
         extension != ".jpeg")
-      throw InvalidParameter("--screenshot", "\"" + run.screenshot + "\"",
+      throw InvalidParameter("--screenshot", quoted_for_terminal(run.screenshot),
                              "a file ending in .png, .bmp, .tga, .jpg or .jpeg");
     check_folder("--screenshot", run.screenshot,
                  std::filesystem::path(run.screenshot).parent_path());
+    check_writable("--screenshot", run.screenshot);
   }
   if (!run.record.empty()) {
     std::error_code error;
@@ -115,10 +159,43 @@ void check_outputs(const RunOptions& run) {
   }
 }
 
+constexpr double mib = 1024.0 * 1024.0;
+
+// The memory the window takes on top of what the process holds when it checks, before the window
+// opens: Mesa's software renderer (llvmpipe loads LLVM and starts its threads, 8 MiB of stack
+// each), SFML's X connection and ImGui's font atlas. Measured with task1 and task5 headless under
+// Xvfb (Debian 12, Mesa 22.3, one malloc arena as main sets under a limit): the smallest
+// `ulimit -v` that runs them is 281 MiB, 15.5 of it mapped at the check; the smallest `ulimit -d`
+// 76 MiB, under 1 in use at the check; the resident size of the whole process stays under
+// 96 MiB. The margin covers other machines' libraries and drivers.
+constexpr double window_address_space = 270 * mib, window_memory = 96 * mib, margin = 64 * mib;
+
+// A window that does not fit in the memory the process may have is refused before it opens:
+// Mesa and ImGui do not check every allocation, and a failed one was a segmentation fault or a
+// corrupted heap, not a message. The scene's own estimate comes on top of the window's.
+void check_window_memory(const SceneParameters& p) {
+  const double scene = estimated_bytes(p);
+  rlimit address_space{};
+  if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY) {
+    const double needed = address_space_in_use() + window_address_space + margin + scene;
+    if (needed > double(address_space.rlim_cur))
+      throw Refused("the window needs " + mebibytes_text(needed) +
+                    " of address space; the limit is " +
+                    std::to_string(std::llround(double(address_space.rlim_cur) / mib)) + " MiB" +
+                    " (ulimit -v): raise the limit, or run springlab-run, which needs no window");
+  }
+  const MemoryLimit limit = available_memory();
+  const double needed = window_memory + margin + scene;
+  if (needed > limit.bytes)
+    throw Refused("the window needs " + mebibytes_text(needed) + " of memory; " +
+                  mebibytes_text(limit.bytes) + " are free (" + limit.source +
+                  "): allow the process more memory, or run springlab-run, which needs no window");
+}
+
 int open_viewer(Options& options) {
   parse_size(options.size, options.app);
   read_numbers(options);
-  check_outputs(options.run);
+  check_outputs(options);
   const SceneParameters p = scene_from(options);
   const bool headless = options.run.frames > 0 || !options.run.screenshot.empty() ||
                         !options.run.record.empty() || options.run.benchmark;
@@ -127,9 +204,11 @@ int open_viewer(Options& options) {
     std::cerr << "springlab-view: no display, so no window can open.\n"
                  "Run it headless under Xvfb instead, e.g.\n"
                  "  xvfb-run -a springlab-view --scene "
-              << options.app.scene << " --frames 120 --screenshot view.png\n";
+              << printable(options.app.scene) << " --frames 120 --screenshot view.png\n";
     return no_display;
   }
+  check_window_memory(p);
+  options.run.terminal = isatty(STDERR_FILENO) == 1;
   options.app.frame_rate_limit = !headless;
   options.app.fixed_frame_time = headless && !options.run.benchmark;
   App app(options.app);
@@ -141,7 +220,7 @@ int open_viewer(Options& options) {
     pacing.real_time = false, pacing.steps_per_frame = *options.steps_per_frame_value;
   session.set_code(options.impl == "student" ? Code::student : Code::reference);
   if (options.compare != "off" && !reference_is_available())
-    std::cerr << "springlab-view: --compare " << options.compare
+    std::cerr << "springlab-view: --compare " << printable(options.compare)
               << " is off: this build has no reference to compare with (its prebuilt reference "
                  "was made for another compiler or processor; the build's first message says "
                  "which)\n";
@@ -150,12 +229,42 @@ int open_viewer(Options& options) {
                                                           : Compare::off);
   session.reset();
   if (options.paused) session.set_running(false);
-  return run(app, options.run, std::cout);
+  return run(app, options.run, std::cout, std::cerr);
 }
+
+// Standard output lost (a full disk, a closed pipe): an error, not a silent exit 0. For --help;
+// run() checks the summary's output itself.
+int checked_stdout(int code) {
+  const std::string failure = flush_failure(std::cout);
+  if (failure.empty()) return code;
+  std::cerr << "springlab-view: " << failure << '\n';
+  return code == done ? lost_output : code;
+}
+
+// Under an address-space limit (ulimit -v), glibc's malloc reserves 64 MiB of it for each thread
+// that allocates (llvmpipe's included): whether the window then fitted, and which allocation
+// failed, changed from run to run and from limit to limit (600 MB crashed, 650 MB ran). One arena
+// makes the window's need a fixed amount, which check_window_memory compares with the limit.
+void one_arena_under_memory_limits() {
+  for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
+    rlimit limit{};
+    if (getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
+      mallopt(M_ARENA_MAX, 1);
+  }
+}
+
+constexpr const char* exit_codes =
+    "\nExit codes: 0 done, 2 bad input, 3 the run diverged, 4 a task not written yet, 5 no "
+    "display, 6 the output could not be written (a full disk, a closed pipe); 1 an unexpected "
+    "error.\nHeadless runs that last more than a few seconds show their progress on stderr; one "
+    "that would last more than a few minutes says so first.";
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  // A closed pipe is then a write error, reported with exit 6, not a silent death by SIGPIPE.
+  std::signal(SIGPIPE, SIG_IGN);
+  one_arena_under_memory_limits();
   Options options;
   CLI::App cli{"springlab-view: watch, steer and diagnose a springlab scene in a window"};
   cli.add_option("--scene", options.app.scene, "task1 ... task5 or a scene file (TOML)")
@@ -178,8 +287,8 @@ int main(int argc, char** argv) {
   cli.add_option("--frames", options.frames,
                  "run this many frames with no user input, then exit (default with --screenshot "
                  "or --record: 120; with --benchmark: 600)");
-  cli.add_option("--screenshot", options.run.screenshot, "save the last frame as this PNG file");
-  cli.add_option("--record", options.run.record, "save every frame into this directory");
+  cli.add_option("--screenshot", options.screenshot, "save the last frame as this PNG file");
+  cli.add_option("--record", options.record, "save every frame into this directory");
   cli.add_flag("--benchmark", options.run.benchmark,
                "no frame-rate limit; report frame-time percentiles and steps per second");
   cli.add_option("--size", options.size, "window size in pixels")->capture_default_str();
@@ -190,23 +299,39 @@ int main(int argc, char** argv) {
   cli.footer("Integrators:" + integrators +
              "\nIn the window: drag a particle to move it, right-click to pin or unpin it, "
              "shift+click to push it;\nwheel to zoom, drag the background to pan; space runs or "
-             "pauses, S steps once, R resets, F fits the view.");
+             "pauses, S steps once, R resets, F fits the view." +
+             exit_codes);
+  // Every message through printable_lines: the user's text in it (a scene name, a path) cannot
+  // command the terminal (ESC).
+  const auto say = [](const std::string& message) {
+    std::cerr << "springlab-view: " << printable_lines(message) << '\n';
+  };
   try {
     cli.parse(argc, argv);
   } catch (const CLI::Success& help) {
-    return cli.exit(help);
+    return checked_stdout(cli.exit(help));
   } catch (const CLI::ParseError& error) {
-    std::cerr << "springlab-view: " << error.what()
-              << " (springlab-view --help lists the options)\n";
+    say(std::string(error.what()) + " (springlab-view --help lists the options)");
     return bad_input;
   }
   try {
-    return open_viewer(options);
+    return open_viewer(options);  // run() checks standard output itself
+  } catch (const OutputLost& error) {
+    say(error.what());
+    return lost_output;
   } catch (const InvalidParameter& error) {
-    std::cerr << "springlab-view: " << error.what() << '\n';
+    say(error.what());
+    return bad_input;
+  } catch (const Refused& error) {
+    say(error.what());
+    return bad_input;
+  } catch (const std::bad_alloc&) {
+    const MemoryLimit limit = available_memory();
+    say("ran out of memory; " + mebibytes_text(limit.bytes) + " are free now (" + limit.source +
+        "): make the grid or the window smaller, or allow the process more memory");
     return bad_input;
   } catch (const std::exception& error) {
-    std::cerr << "springlab-view: stopped on an unexpected error: " << error.what() << '\n';
-    return 1;
+    say(std::string("stopped on an unexpected error: ") + error.what());
+    return failed;
   }
 }

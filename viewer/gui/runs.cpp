@@ -1,12 +1,18 @@
 #include "gui/runs.hpp"
 
-#include "springlab/errors.hpp"
+#include "springlab/cli_values.hpp"
+#include "springlab/scene_text.hpp"
+
+#include <SFML/System/Err.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <optional>
 #include <ostream>
 #include <utility>
 #include <vector>
@@ -14,9 +20,25 @@
 namespace springlab::view {
 namespace {
 
-void save(const sf::Image& image, const std::string& path) {
-  if (!image.saveToFile(path))
-    throw InvalidParameter("file", path, "a PNG file that can be written");
+// SFML 2.5's Image::saveToFile does not check its writes (stb_image_write ignores what fwrite and
+// fclose say): a full disk left a truncated image behind a run that said it was done. The file is
+// read back and its size compared with the image's; an incomplete file is removed rather than
+// left looking like output. `lost` says which option's file it was, for the message.
+void save(const sf::Image& image, const std::string& path, const std::string& lost) {
+  bool written = false;
+  {
+    // SFML's own "Failed to save/load image" would only repeat ours, without the option.
+    std::streambuf* const messages = sf::err().rdbuf(nullptr);
+    sf::Image back;
+    written =
+        image.saveToFile(path) && back.loadFromFile(path) && back.getSize() == image.getSize();
+    sf::err().rdbuf(messages);
+  }
+  if (written) return;
+  std::error_code error;
+  if (!std::filesystem::is_symlink(path, error) && std::filesystem::is_regular_file(path, error))
+    std::filesystem::remove(path, error);
+  throw OutputLost(lost + " could not be written in full (is the disk full?)");
 }
 
 std::string frame_file(const std::string& directory, long frame) {
@@ -93,9 +115,84 @@ void benchmark_report(const std::vector<double>& frames, long steps, double seco
                     : "real time at 60 frames/s: no (p95 above 16.7 ms)\n");
 }
 
+// "2.5 ms": the time one frame takes.
+std::string frame_time_in_words(double seconds) {
+  char text[32];
+  if (seconds < 1.0)
+    std::snprintf(text, sizeof text, "%.3g ms", seconds * 1e3);
+  else
+    std::snprintf(text, sizeof text, "%.3g s", seconds);
+  return text;
+}
+
+// What a headless run of a fixed number of frames says on stderr while it goes on: first, when
+// it will take more than a few minutes, how long (timed over its first frames), so that a run of
+// a million frames is not minutes of silence; then, once it has lasted a few seconds, how far it
+// is and the time left, at most once a second (on a terminal, one line updated in place). Wall
+// time decides only what is printed, never what the run does.
+class FrameProgress {
+ public:
+  static constexpr double timing_seconds = 0.5;  // the first frames timed for the estimate
+  static constexpr double warn_above = 180.0;    // s: longer runs are announced
+  static constexpr double quiet_for = 3.0;       // s: no progress in a run's first seconds
+  static constexpr double every = 1.0;           // s between progress lines
+
+  FrameProgress(long frames, std::ostream& err, bool terminal)
+      : frames_(frames), err_(err), terminal_(terminal) {}
+  FrameProgress(const FrameProgress&) = delete;
+  FrameProgress& operator=(const FrameProgress&) = delete;
+  ~FrameProgress() { finish(); }
+
+  /// After frame `n` (1 for the first) of the run.
+  void after_frame(long n) {
+    const double seconds = elapsed();
+    if (!estimated_ && (seconds >= timing_seconds || n >= frames_)) {
+      estimated_ = true;
+      const double per_frame = seconds / double(n);
+      if (per_frame * double(frames_) > warn_above)
+        err_ << "springlab-view: this run will take about "
+             << duration_in_words(per_frame * double(frames_)) << " (" << frames_ << " frames at "
+             << frame_time_in_words(per_frame)
+             << " a frame); press Ctrl-C to stop, or ask for fewer --frames" << std::endl;
+    }
+    if (seconds < next_report_ || n >= frames_) return;
+    char line[160];
+    std::snprintf(line, sizeof line, "springlab-view: frame %ld of %ld (%.3g %%); about %s left", n,
+                  frames_, 100.0 * double(n) / double(frames_),
+                  duration_in_words(seconds / double(n) * double(frames_ - n)).c_str());
+    if (terminal_) {
+      err_ << '\r' << line << "\033[K" << std::flush;  // \033[K: clear what a longer line left
+      line_open_ = true;
+    } else {
+      err_ << line << std::endl;
+    }
+    next_report_ = seconds + every;
+  }
+
+  /// Ends the line updated in place, if one was printed: what follows starts on a line of its own.
+  void finish() {
+    if (line_open_) err_ << '\n' << std::flush;
+    line_open_ = false;
+  }
+
+ private:
+  double elapsed() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+  long frames_;
+  std::ostream& err_;
+  bool terminal_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  double next_report_ = quiet_for;
+  bool estimated_ = false;
+  bool line_open_ = false;
+};
+
 // Said once, when a frame's steps take more than a second: the window then lags far behind the
 // simulated time and seems frozen, which a student would otherwise take for a bug.
-void warn_if_too_slow(const FrameInfo& frame, bool& warned) {
+void warn_if_too_slow(const FrameInfo& frame, bool& warned, std::optional<FrameProgress>& progress,
+                      std::ostream& err) {
   if (warned || frame.stepping_seconds <= 1.0) return;
   warned = true;
   char line[256];
@@ -104,7 +201,8 @@ void warn_if_too_slow(const FrameInfo& frame, bool& warned) {
                 "with this scene (a few frames a minute); a smaller grid, a larger step or "
                 "another integrator is faster\n",
                 frame.steps, frame.stepping_seconds);
-  std::fputs(line, stderr);
+  if (progress) progress->finish();
+  err << line << std::flush;
 }
 
 }  // namespace
@@ -114,7 +212,7 @@ void print_summary(const Session& session, std::ostream& out) {
   const auto counted = [](std::size_t n, const char* thing) {
     return std::to_string(n) + " " + thing + (n == 1 ? "" : "s");
   };
-  out << "scene " << p.name << ": " << p.rows << "x" << p.cols << " grid, "
+  out << "scene " << printable(p.name) << ": " << p.rows << "x" << p.cols << " grid, "
       << counted(std::size_t(p.rows * p.cols), "particle") << ", ";
   if (const Simulation* sim = session.primary()) {
     const Diagnostics d = sim->diagnostics();
@@ -129,12 +227,17 @@ void print_summary(const Session& session, std::ostream& out) {
   } else {
     out << "no simulation\n";
   }
-  if (session.problem().kind != Problem::Kind::none)
-    out << session.problem().headline << ": " << session.problem().detail << '\n';
 }
 
-int run(App& app, const RunOptions& options, std::ostream& out) {
+void print_problem(const Session& session, std::ostream& err) {
+  const Problem& problem = session.problem();
+  if (problem.kind != Problem::Kind::none)
+    err << "springlab-view: " << printable_lines(problem.headline + ": " + problem.detail) << '\n';
+}
+
+int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& err) {
   if (!options.record.empty()) std::filesystem::create_directories(options.record);
+  const std::string record = "--record = " + quoted_for_terminal(options.record) + ": ";
   std::vector<double> frame_seconds;
   std::vector<FramePhases> phases;
   long steps = 0;
@@ -142,32 +245,46 @@ int run(App& app, const RunOptions& options, std::ostream& out) {
   const auto start = std::chrono::steady_clock::now();
   auto last = start;
   bool warned_slow = false;
+  std::optional<FrameProgress> progress;
+  if (options.frames > 0) progress.emplace(options.frames, err, options.terminal);
   for (long frame = 0; app.is_open() && (options.frames == 0 || frame < options.frames); ++frame) {
     const bool last_frame = frame + 1 == options.frames;
     app.frame(!options.record.empty() || (last_frame && !options.screenshot.empty()));
-    if (!options.record.empty()) save(app.captured(), frame_file(options.record, frame));
+    if (!options.record.empty()) {
+      const std::string file = frame_file(options.record, frame);
+      save(app.captured(), file, record + printable(file));
+    }
     const auto now = std::chrono::steady_clock::now();
     frame_seconds.push_back(std::chrono::duration<double>(now - last).count());
     last = now;
-    warn_if_too_slow(app.last_frame(), warned_slow);
+    warn_if_too_slow(app.last_frame(), warned_slow, progress, err);
     steps += app.last_frame().steps;
     stepping += app.last_frame().stepping_seconds;
     phases.push_back(app.last_frame().phases);
+    if (progress) progress->after_frame(frame + 1);
   }
+  if (progress) progress->finish();
   const double seconds = std::chrono::duration<double>(last - start).count();
-  if (!options.screenshot.empty() && app.captured().getSize().x > 0) {
-    save(app.captured(), options.screenshot);
-  }
+  if (!options.screenshot.empty() && app.captured().getSize().x > 0)
+    save(app.captured(), options.screenshot,
+         "--screenshot = " + quoted_for_terminal(options.screenshot) + ": the image");
   print_summary(app.session(), out);
-  if (!options.screenshot.empty()) out << "screenshot: " << options.screenshot << '\n';
+  if (!options.screenshot.empty()) out << "screenshot: " << printable(options.screenshot) << '\n';
   if (!options.record.empty())
-    out << "frames: " << frame_file(options.record, 0) << " ... "
-        << frame_file(options.record, long(frame_seconds.size()) - 1) << '\n';
+    out << "frames: " << printable(frame_file(options.record, 0)) << " ... "
+        << printable(frame_file(options.record, long(frame_seconds.size()) - 1)) << '\n';
   if (options.benchmark && !frame_seconds.empty()) {
     benchmark_report(frame_seconds, steps, seconds, stepping, app.session().time(), out);
     phase_report(phases, out);
   }
-  return exit_code(app.session());
+  // Checked here, while errno still says why: a full disk or a closed pipe loses the summary, and
+  // a run that says nothing of it is not done (exit 6). The problem, if any, keeps its own code.
+  const std::string failure = flush_failure(out);
+  print_problem(app.session(), err);
+  const int code = exit_code(app.session());
+  if (failure.empty()) return code;
+  err << "springlab-view: " << failure << '\n';
+  return code == 0 ? 6 : code;
 }
 
 }  // namespace springlab::view

@@ -1,6 +1,7 @@
 #include "gui/session.hpp"
 
 #include "springlab/errors.hpp"
+#include "springlab/memory_budget.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/selection.hpp"
 #include "springlab/stability.hpp"
@@ -9,6 +10,7 @@
 #include <cctype>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <sstream>
 
 namespace springlab::view {
@@ -43,6 +45,16 @@ Problem problem_of(Problem::Kind kind, std::string headline, std::string detail)
   problem.headline = std::move(headline);
   problem.detail = std::move(detail);
   return problem;
+}
+
+// A std::bad_alloc the simulation has not already explained (it turns its own into
+// InvalidParameter): the kit's words for it, with the scene's estimate and what is free now.
+std::string out_of_memory(const SceneParameters& p) {
+  try {
+    throw_out_of_memory(p, "in the viewer");
+  } catch (const InvalidParameter& error) {
+    return error.what();
+  }
 }
 
 }  // namespace
@@ -215,6 +227,9 @@ void Session::report(const std::exception& error, const std::string& whose) {
   } else if (dynamic_cast<const InvalidParameter*>(&error)) {
     problem_ =
         problem_of(Problem::Kind::invalid, whose + "A parameter is out of range", error.what());
+  } else if (dynamic_cast<const std::bad_alloc*>(&error)) {
+    problem_ =
+        problem_of(Problem::Kind::invalid, whose + "Out of memory", out_of_memory(parameters_));
   } else {
     problem_ =
         problem_of(Problem::Kind::failed, whose + "The code under test failed", error.what());

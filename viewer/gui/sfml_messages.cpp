@@ -1,5 +1,7 @@
 #include "gui/sfml_messages.hpp"
 
+#include "springlab/scene_text.hpp"
+
 #include <SFML/System/Err.hpp>
 
 #include <ostream>
@@ -30,7 +32,12 @@ int SfmlMessageFilter::sync() {
 }
 
 void SfmlMessageFilter::pass_on_line() {
-  if (line_.rfind(unhelpful, 0) != 0) original_->sputn(line_.data(), std::streamsize(line_.size()));
+  // SFML quotes file names as given ("Failed to save image \"...\""): escaped, so that a name
+  // with ESC in it cannot command the terminal.
+  if (line_.rfind(unhelpful, 0) != 0) {
+    const std::string shown = printable_lines(line_);
+    original_->sputn(shown.data(), std::streamsize(shown.size()));
+  }
   line_.clear();
 }
 

@@ -1,6 +1,7 @@
 // SFML's error stream, minus one line: every window made under software GL (Xvfb, a machine
 // without a GPU driver) prints "Setting vertical sync not supported", which says nothing a
-// student can act on. Every other SFML message still reaches stderr.
+// student can act on. Every other SFML message still reaches stderr, its control characters
+// escaped.
 #pragma once
 
 #include <streambuf>
@@ -8,7 +9,8 @@
 
 namespace springlab::view {
 
-/// While it lives, sf::err() drops that one line and passes every other line on unchanged.
+/// While it lives, sf::err() drops that one line and passes every other line on, escaped
+/// (printable_lines).
 class SfmlMessageFilter : public std::streambuf {
  public:
   SfmlMessageFilter();

@@ -354,11 +354,9 @@ std::string out_of_memory() {
 
 // Standard output lost (a full disk, a closed pipe): an error, not a silent exit 0.
 int checked_stdout(int code) {
-  errno = 0;
-  std::cout.flush();
-  if (std::cout.good()) return code;
-  std::cerr << "springlab-run: standard output could not be written"
-            << (errno ? std::string(" (") + std::strerror(errno) + ")" : std::string()) << '\n';
+  const std::string failure = flush_failure(std::cout);
+  if (failure.empty()) return code;
+  std::cerr << "springlab-run: " << failure << '\n';
   return code == done ? lost_output : code;
 }
 

@@ -5,6 +5,7 @@
 #include "springlab/parameters.hpp"
 
 #include <initializer_list>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -37,6 +38,11 @@ void refuse_double_settings(const std::vector<std::string>& assignments,
 /// Throws InvalidParameter naming `option` when `path` is empty: an empty file name is a slip
 /// (an unset shell variable), not a wish for no output.
 void refuse_empty_path(std::string_view option, std::string_view path);
+
+/// Flushes `out` and says why it could not be written ("standard output could not be written
+/// (No space left on device)"), or "" when all of it was: a front end that lost its output says
+/// so and exits 6 rather than 0.
+std::string flush_failure(std::ostream& out);
 
 /// How long `seconds` of wall time is, in words a person reads at a glance: "45 s",
 /// "12 minutes", "3.4 hours", "2.3 days", "14 years".

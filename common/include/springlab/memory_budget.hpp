@@ -19,6 +19,9 @@ struct MemoryLimit {
 /// process's cgroup limit less its usage (v2 memory.max, v1 memory.limit_in_bytes).
 MemoryLimit available_memory();
 
+/// The address space this process has mapped now (VmSize), B: what `ulimit -v` counts.
+double address_space_in_use();
+
 /// About how many bytes a run of scene p with p.integrator needs at its peak: the particles,
 /// the springs, the simulation's buffers and the integrator's (for implicit Euler, its
 /// conjugate gradients: the fallback's factorisation, needed only when they fail, checks its
