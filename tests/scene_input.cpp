@@ -4,6 +4,7 @@
 #include "springlab/errors.hpp"
 #include "springlab/parameters.hpp"
 #include "springlab/scene_file.hpp"
+#include "springlab/scene_text.hpp"
 
 #include <string>
 
@@ -79,6 +80,10 @@ TEST_CASE("Scene files: text that toml++ 3.3.0 mishandles is refused before it r
   CHECK_THAT(scene_rejection("mass=[-inf, nan]\n"),
              Contains("s.toml:1: mass = [-inf, nan] (an array): expected a number"));
   CHECK_THAT(scene_rejection("mass = nan\n"), Contains("mass = nan kg: allowed 1e-06 <= mass"));
+  // A byte-order mark (Notepad writes one) starts the file; elsewhere it is a character outside
+  // quotes.
+  CHECK(parse_scene("\xEF\xBB\xBFrows = 3\r\n", "s.toml").rows == 3);
+  CHECK_THAT(scene_rejection("rows = 3\n\xEF\xBB\xBF"), Contains("U+FEFF"));
   // Non-ASCII text stays allowed where TOML allows it: in strings and comments.
   CHECK(parse_scene("name = \"Tr\xC3\xA4gheit\" # \xC3\xA2\n", "s.toml").name == "Tr\xC3\xA4gheit");
 }
@@ -92,6 +97,8 @@ TEST_CASE("Scene files: a number TOML cannot hold says what the key allows",
   CHECK_THAT(scene_rejection("cols = 2\n  rows =99999999999999999999999\n"),
              Contains("s.toml:2") && Contains("; allowed 1 <= rows <= 1e+05 (a whole number)"));
   CHECK_THAT(scene_rejection("title = 1e999\n"), !Contains("allowed"));  // no such parameter
+  CHECK_THAT(scene_rejection("rows = 2\nrows = 3\n"),  // a duplicate: no range to give
+             Contains("s.toml:2") && !Contains("allowed"));
 }
 
 TEST_CASE("Scene files: values are quoted as the file writes them", "[core][scene-input]") {
@@ -160,4 +167,29 @@ TEST_CASE("Option --set: every bad value is named with the key, the text as writ
   CHECK_THAT(set("foo.bar=1"), !Contains("did you mean") && Contains("--help"));
   CHECK_THAT(set("strcutural.k=1"), Contains("did you mean \"structural.k\""));
   CHECK(p.mass == SceneParameters{}.mass);  // nothing was set on the way
+}
+
+TEST_CASE("Messages show what could act on a terminal, escaped", "[core][scene-input]") {
+  // A tester's find: bytes that are not UTF-8 (0x9B is the 8-bit CSI of some terminals) and
+  // Unicode's bidirectional controls (U+202E turns the text after it around) reached the
+  // terminal raw.
+  CHECK(printable("a\x9B[2Jb") == "a\\x9B[2Jb");
+  CHECK(printable("a\xE2\x80\xAE"
+                  "b") == "a\\u202Eb");
+  CHECK(printable("a\x1B[31mb\xC2\x9B") == "a\\x1B[31mb\\xC2\\x9B");
+  CHECK(printable("Tr\xC3\xA4gheit \xE2\x82\xAC") == "Tr\xC3\xA4gheit \xE2\x82\xAC");  // kept
+  CHECK(printable_lines("line 1\n\tline\x1B 2") == "line 1\n\tline\\x1B 2");
+}
+
+TEST_CASE("Messages quote a long text by its start and its length", "[core][scene-input]") {
+  // A tester's find: --dt with 100,000 digits was echoed whole, a 200 KB message.
+  const std::string digits(100000, '1');
+  const std::string quoted = quoted_for_terminal(digits);
+  CHECK(quoted == "\"" + digits.substr(0, 100) + "...\" (100000 bytes)");
+  CHECK(quoted_for_terminal(std::string(120, 'a')) == "\"" + std::string(120, 'a') + "\"");
+  // Cut between characters, never inside one (each "\xC3\xA4" is one).
+  std::string umlauts;
+  for (int i = 0; i < 100; ++i)
+    umlauts += "\xC3\xA4";
+  CHECK(quoted_for_terminal(umlauts) == "\"" + umlauts.substr(0, 100) + "...\" (200 bytes)");
 }

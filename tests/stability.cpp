@@ -372,3 +372,32 @@ TEST_CASE("Stability: damping-only scenes have the dampers' limits, checked by r
   const double beyond = method == "verlet" ? 0.01 / 1.1 : limit;
   CHECK_FALSE(runs_stably(damping_only_scene(method, 1.1 * beyond)));
 }
+
+TEST_CASE("Stability: every limit scales as 1/omega on a scene a million times faster",
+          "[stability][scaling]") {
+  // A tester's find: with k = 1e9 N/m and m = 1e-6 kg the eigen-solves, unbalanced (K/m = 1e15
+  // beside the identity's 1), gave RK4 4e-18 s and symplectic Euler 1e-12 s for limits near
+  // 5e-8 s. Scaling k by lambda, m by 1/mu and b by sqrt(lambda/mu) multiplies every frequency
+  // and every damping rate by s = sqrt(lambda mu), damping ratios unchanged: every critical step
+  // is then exactly 1/s of the lab's.
+  SceneParameters slow = lab_grid(3, 3, true, lab.step, "rk4");
+  SceneParameters fast = slow;
+  const double mu = slow.mass / 1e-6, lambda = 1e9 / slow.structural.k;
+  const double s = std::sqrt(lambda * mu);
+  fast.mass = slow.mass / mu;
+  for (SpringFamilyParameters* family : {&fast.structural, &fast.shear, &fast.bend}) {
+    family->k *= lambda;
+    family->b *= std::sqrt(lambda / mu);
+  }
+  const LinearModel slow_model = linearise_at_rest(slow, implementation());
+  const LinearModel fast_model = linearise_at_rest(fast, implementation());
+  CHECK_THAT(highest_frequency(fast_model), WithinRel(s * highest_frequency(slow_model), 1e-9));
+  for (const std::string& method : integrator_names()) {
+    CAPTURE(method);
+    const double expected = critical_step(slow_model, method) / s;
+    if (std::isinf(expected))
+      CHECK(std::isinf(critical_step(fast_model, method)));
+    else
+      CHECK_THAT(critical_step(fast_model, method), WithinRel(expected, 1e-6));
+  }
+}

@@ -45,8 +45,17 @@ Range parameter_range(std::string_view key) {
 
 void refuse_double_settings(const std::vector<std::string>& assignments,
                             std::initializer_list<OptionSetting> options) {
+  const auto key_of = [](const std::string& assignment) {
+    return std::string_view(assignment).substr(0, assignment.find('='));
+  };
+  for (std::size_t i = 0; i < assignments.size(); ++i)
+    for (std::size_t j = 0; j < i; ++j)
+      if (key_of(assignments[i]) == key_of(assignments[j]))
+        throw InvalidParameter("--set", quoted_for_terminal(assignments[i]),
+                               "once a parameter: " + printable(key_of(assignments[j])) +
+                                   " is set already (" + quoted_for_terminal(assignments[j]) + ")");
   for (const std::string& assignment : assignments) {
-    const std::string_view key = std::string_view(assignment).substr(0, assignment.find('='));
+    const std::string_view key = key_of(assignment);
     for (const OptionSetting& o : options)
       if (o.given && key == o.key)
         throw InvalidParameter("--set", quoted_for_terminal(assignment),
@@ -68,6 +77,17 @@ std::string flush_failure(std::ostream& out) {
   const int reason = errno;  // read at once: what follows may change it
   return std::string("standard output could not be written") +
          (reason ? std::string(" (") + std::strerror(reason) + ")" : std::string());
+}
+
+std::string number_apart(double x, double other, int digits) {
+  const auto text = [](double value, int precision) {
+    char out[40];
+    std::snprintf(out, sizeof out, "%.*g", precision, value);
+    return std::string(out);
+  };
+  while (digits < 17 && x != other && text(x, digits) == text(other, digits))
+    ++digits;
+  return text(x, digits);
 }
 
 std::string duration_in_words(double seconds) {

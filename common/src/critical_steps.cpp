@@ -94,7 +94,7 @@ Eigen::MatrixXd step_matrix_of(const Deformation& d, std::string_view integrator
 
 double spectral_radius(const Eigen::MatrixXd& s) {
   if (s.size() == 0) return 0.0;
-  return Eigen::EigenSolver<Eigen::MatrixXd>(s, false).eigenvalues().cwiseAbs().maxCoeff();
+  return balanced_eigenvalues(s).cwiseAbs().maxCoeff();
 }
 
 // RK4's growth factor |R(z)| per step on a mode with hλ = z.

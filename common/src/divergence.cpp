@@ -2,6 +2,7 @@
 // laws the forces must keep, then the step limit of the method.
 #include "springlab/divergence.hpp"
 
+#include "springlab/cli_values.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/simulation.hpp"
@@ -264,14 +265,18 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
                                  : c.source == LimitSource::lower_bound  ? "a lower bound of "
                                                                          : "";
     if (d.step > c.step)
-      out << " is " << number(d.step / c.step) << " times " << estimate << "the critical step "
-          << number(c.step) << " s of " << method << " on this scene";
+      out << " is " << number_apart(d.step / c.step, 1.0, 3) << " times " << estimate
+          << "the critical step " << number_apart(c.step, d.step, 3) << " s of " << method
+          << " on this scene";
     else
-      out << " is below " << estimate << "the critical step " << number(c.step) << " s of "
-          << method << " on this scene";
+      out << " is below " << estimate << "the critical step " << number_apart(c.step, d.step, 3)
+          << " s of " << method << " on this scene";
   }
-  if (!std::isnan(d.growth) && d.step > c.step)
-    out << " (each step multiplies its fastest-growing motion by " << number(d.growth, 4) << ")";
+  // (A growth of 1 or less says nothing of this divergence: Verlet's iteration, whose own limit
+  // the step matrix does not see, can be what failed.)
+  if (!std::isnan(d.growth) && d.step > c.step && d.growth > 1.0)
+    out << " (each step multiplies its fastest-growing motion by " << number_apart(d.growth, 1.0, 4)
+        << ")";
   out << drag_words(scene, c);
   return out.str();
 }

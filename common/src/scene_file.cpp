@@ -5,7 +5,12 @@
 
 #include <toml++/toml.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -163,6 +168,14 @@ void apply(const Source& source, const Entry& entry, SceneParameters& p) {
   }
 }
 
+// Whether toml++ failed on a number it cannot hold ("Error while parsing floating-point: ...",
+// "... decimal integer: ..."), not on a duplicate key, say.
+bool is_number_error(std::string_view description) {
+  const std::string_view what = description.substr(0, description.find(':'));
+  return what.find("floating-point") != std::string_view::npos ||
+         what.find("integer") != std::string_view::npos;
+}
+
 // For a syntax error on a line "KEY = VALUE" whose KEY is a numeric parameter (a number beyond a
 // double's or an integer's range, say): what KEY allows, which toml++'s own words do not say.
 std::string range_hint(std::string_view text, toml::source_index line) {
@@ -204,14 +217,33 @@ SceneParameters load_scene_file(const std::string& path) {
     throw InvalidParameter("scene", quoted_for_terminal(path),
                            "a scene file of at most " + std::to_string(max_scene_file_bytes) +
                                " bytes; this one has " + std::to_string(size));
-  std::ifstream file(path);
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (!file) throw InvalidParameter("scene", quoted_for_terminal(path), "a readable scene file");
-  return parse_scene(text.str(), path);
+  // Read with the system's own calls: a stream says nothing of a read that failed midway (a
+  // file of /proc, a disk error) and would hand on an empty or cut text as the scene.
+  const int file = open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (file < 0)
+    throw InvalidParameter("scene", quoted_for_terminal(path),
+                           std::string("a readable scene file (") + std::strerror(errno) + ")");
+  std::string text;
+  char buffer[8192];
+  ssize_t got = 0;
+  while ((got = read(file, buffer, sizeof buffer)) > 0 && text.size() <= max_scene_file_bytes)
+    text.append(buffer, std::size_t(got));
+  const int reason = errno;
+  close(file);
+  if (got < 0)
+    throw InvalidParameter("scene", quoted_for_terminal(path),
+                           std::string("a readable scene file (") + std::strerror(reason) + ")");
+  if (text.size() > max_scene_file_bytes)  // a file that grew, or reports no size (a pipe)
+    throw InvalidParameter(
+        "scene", quoted_for_terminal(path),
+        "a scene file of at most " + std::to_string(max_scene_file_bytes) + " bytes");
+  return parse_scene(text, path);
 }
 
 SceneParameters parse_scene(std::string_view text, const std::string& path) {
+  // A byte-order mark, which some editors write at the start of a UTF-8 file, is no character of
+  // the scene.
+  if (text.starts_with("\xEF\xBB\xBF")) text.remove_prefix(3);
   check_scene_text(text, path);  // what toml++ 3.3.0 would mishandle, refused first
   toml::table table;
   try {
@@ -219,7 +251,9 @@ SceneParameters parse_scene(std::string_view text, const std::string& path) {
   } catch (const toml::parse_error& error) {
     throw InvalidParameter(
         place(path, error.source()), "(syntax)",
-        std::string(error.description()) + range_hint(text, error.source().begin.line));
+        std::string(error.description()) + (is_number_error(error.description())
+                                                ? range_hint(text, error.source().begin.line)
+                                                : std::string()));
   }
   SceneParameters p;
   p.name = path;

@@ -288,21 +288,36 @@ bool has_control_character(std::string_view text) {
   return false;
 }
 
+// Characters that reorder the text around them on a terminal (Unicode's bidirectional
+// controls): shown, never obeyed, as control characters are.
+namespace {
+bool is_bidi_control(char32_t c) {
+  return c == 0x200E || c == 0x200F || (c >= 0x202A && c <= 0x202E) || (c >= 0x2066 && c <= 0x2069);
+}
+}  // namespace
+
 std::string printable(std::string_view text) {
   std::string out;
-  for (std::size_t at = 0; at < text.size(); ++at) {
-    const unsigned char b = static_cast<unsigned char>(text[at]);
-    const bool c1 = b == 0xC2 && byte_at(text, at + 1) >= 0x80 && byte_at(text, at + 1) <= 0x9F;
-    if (b >= 0x20 && b != 0x7F && !c1) {
-      out += char(b);
+  char code[16];
+  for (std::size_t at = 0; at < text.size();) {
+    char32_t c = 0;
+    const std::size_t length = decode(text, at, c);
+    if (length == 0) {  // not UTF-8: a lone byte such as 0x9B, the 8-bit CSI of some terminals
+      std::snprintf(code, sizeof code, "\\x%02X", unsigned(byte_at(text, at)));
+      out += code;
+      ++at;
       continue;
     }
-    char code[16];
-    if (c1)
-      std::snprintf(code, sizeof code, "\\xC2\\x%02X", unsigned(byte_at(text, ++at)));
+    if (is_control(c) && c < 0x80)
+      std::snprintf(code, sizeof code, "\\x%02X", unsigned(c));
+    else if (is_control(c))
+      std::snprintf(code, sizeof code, "\\xC2\\x%02X", unsigned(c));
+    else if (is_bidi_control(c))
+      std::snprintf(code, sizeof code, "\\u%04X", unsigned(c));
     else
-      std::snprintf(code, sizeof code, "\\x%02X", unsigned(b));
-    out += code;
+      code[0] = '\0';
+    out += code[0] ? std::string(code) : std::string(text.substr(at, length));
+    at += length;
   }
   return out;
 }
@@ -320,7 +335,13 @@ std::string printable_lines(std::string_view text) {
 }
 
 std::string quoted_for_terminal(std::string_view text) {
-  return "\"" + printable(text) + "\"";
+  constexpr std::size_t shown = 100, longest = 120;  // bytes
+  if (text.size() <= longest) return "\"" + printable(text) + "\"";
+  std::size_t cut = shown;
+  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80)
+    --cut;  // not inside a character
+  return "\"" + printable(text.substr(0, cut)) + "...\" (" + std::to_string(text.size()) +
+         " bytes)";
 }
 
 }  // namespace springlab

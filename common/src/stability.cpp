@@ -67,9 +67,34 @@ Eigen::MatrixXd system_matrix(const LinearModel& model) {
   return a;
 }
 
+Eigen::VectorXcd balanced_eigenvalues(Eigen::MatrixXd a) {
+  // Each row and column pair is scaled by a power of 2 until their off-diagonal norms are within a
+  // factor of 2 of each other (Numerical Recipes' "balanc", LAPACK's dgebal without permutations).
+  constexpr double radix = 2.0;
+  for (bool done = false; !done;) {
+    done = true;
+    for (Eigen::Index i = 0; i < a.rows(); ++i) {
+      double column = a.col(i).cwiseAbs().sum() - std::abs(a(i, i));
+      const double row = a.row(i).cwiseAbs().sum() - std::abs(a(i, i));
+      if (column == 0.0 || row == 0.0) continue;
+      const double before = column + row;
+      double f = 1.0;
+      while (column < row / radix)
+        f *= radix, column *= radix * radix;
+      while (column > row * radix)
+        f /= radix, column /= radix * radix;
+      if ((column + row) / f < 0.95 * before) {  // column is now f^2 times the old one
+        done = false;
+        a.row(i) /= f;
+        a.col(i) *= f;
+      }
+    }
+  }
+  return Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
+}
+
 Eigen::VectorXcd system_eigenvalues(const LinearModel& model) {
-  Eigen::EigenSolver<Eigen::MatrixXd> solver(system_matrix(model), false);
-  return solver.eigenvalues();
+  return balanced_eigenvalues(system_matrix(model));
 }
 
 double explicit_euler_growth_factor(const LinearModel& model, double h) {

@@ -31,6 +31,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <new>
 #include <optional>
 
@@ -79,6 +80,10 @@ void parse_size(const std::string& text, AppOptions& app) {
 
 // The scene as the options ask for it, checked before a window opens.
 SceneParameters scene_from(const Options& options) {
+  if (options.compare != "off" && options.impl != "student")
+    throw InvalidParameter("--compare", quoted_for_terminal(options.compare),
+                           "off with --impl reference: a comparison sets your code beside the "
+                           "reference, so add --impl student");
   // An option and a --set of the same parameter: which should win would be a guess.
   refuse_double_settings(options.sets,
                          {{"--dt", "step", options.dt.has_value()},
@@ -136,6 +141,13 @@ void check_writable(const char* option, const std::string& path) {
 // --screenshot and --record, checked before the first frame rather than after the last.
 void check_outputs(Options& options) {
   RunOptions& run = options.run;
+  // Never over the scene file itself (a scene file named view.png, say).
+  std::error_code same;
+  for (const auto& [option, path] :
+       {std::pair{"--screenshot", options.screenshot}, std::pair{"--record", options.record}})
+    if (path && std::filesystem::equivalent(*path, options.app.scene, same))
+      throw InvalidParameter(option, quoted_for_terminal(*path),
+                             "not the scene file: the images would overwrite the scene");
   if (options.screenshot) refuse_empty_path("--screenshot", *options.screenshot);
   if (options.record) refuse_empty_path("--record", *options.record);
   run.screenshot = options.screenshot.value_or("");
@@ -218,6 +230,9 @@ int open_viewer(Options& options) {
   if (options.real_time_factor_value) pacing.real_time_factor = *options.real_time_factor_value;
   if (options.steps_per_frame_value)
     pacing.real_time = false, pacing.steps_per_frame = *options.steps_per_frame_value;
+  // A headless run takes exactly 1/60 s of the scene a frame, as the README promises, however
+  // many steps that is: the cap that keeps a window responsive has no window to serve.
+  if (options.app.fixed_frame_time) pacing.max_steps_per_frame = std::numeric_limits<long>::max();
   session.set_code(options.impl == "student" ? Code::student : Code::reference);
   if (options.compare != "off" && !reference_is_available())
     std::cerr << "springlab-view: --compare " << printable(options.compare)

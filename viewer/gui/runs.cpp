@@ -231,8 +231,12 @@ void print_summary(const Session& session, std::ostream& out) {
 
 void print_problem(const Session& session, std::ostream& err) {
   const Problem& problem = session.problem();
-  if (problem.kind != Problem::Kind::none)
-    err << "springlab-view: " << printable_lines(problem.headline + ": " + problem.detail) << '\n';
+  if (problem.kind == Problem::Kind::none) return;
+  // The error's own words already say "Task N is not implemented yet": not twice.
+  const std::string text = problem.kind == Problem::Kind::not_implemented
+                               ? problem.detail
+                               : problem.headline + ": " + problem.detail;
+  err << "springlab-view: " << printable_lines(text) << '\n';
 }
 
 int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& err) {

@@ -251,8 +251,7 @@ long Session::frame(double seconds) {
     steps = long(std::min(due, double(pacing_.max_steps_per_frame)));
     owed_steps_ = due > double(steps) ? 0.0 : owed_steps_ - double(steps);
   }
-  steps = std::clamp(steps, 0L, pacing_.max_steps_per_frame);
-  advance(steps);
+  advance(std::max(steps, 0L));
   return steps;
 }
 

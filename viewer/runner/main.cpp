@@ -44,8 +44,8 @@ struct Options {
   std::optional<std::string> integrator;
   std::optional<std::string> dt, duration;
   std::vector<std::string> sets;
-  std::string every = "1";
-  std::optional<std::string> csv;  // empty when not given; "" given is an error
+  std::optional<std::string> every;  // only with --csv
+  std::optional<std::string> csv;    // empty when not given; "" given is an error
   bool quiet = false;
   bool stability = false;
   bool estimate = false;
@@ -152,14 +152,16 @@ void print_stability(std::ostream& out, const SceneParameters& p) {
     out << "stability: " << p.integrator << " is stable on this scene at every h\n";
     return;
   }
-  out << "stability: " << p.integrator << " is stable on this scene for h < " << limit << " s; ";
+  out << "stability: " << p.integrator << " is stable on this scene for h < "
+      << number_apart(limit, p.step) << " s; ";
   if (p.step < limit) {
-    out << "h = " << p.step << " s is within it\n";
+    out << "h = " << number_apart(p.step, limit) << " s is within it\n";
     return;
   }
-  out << "h = " << p.step << " s is BEYOND it";
+  out << "h = " << number_apart(p.step, limit) << " s is BEYOND it";
   if (p.integrator == "explicit-euler")
-    out << ": small motions grow x" << explicit_euler_growth_factor(model, p.step) << " a step";
+    out << ": small motions grow x"
+        << number_apart(explicit_euler_growth_factor(model, p.step), 1.0) << " a step";
   out << '\n';
 }
 
@@ -185,7 +187,7 @@ std::string_view how(LimitSource source) {
 void print_stability_report(std::ostream& out, const SceneParameters& p,
                             const Implementation& impl) {
   const StabilityReport report = stability_report(p, impl);
-  out << "stability of scene " << p.name << " (" << p.rows << "x" << p.cols << " grid, "
+  out << "stability of scene " << printable(p.name) << " (" << p.rows << "x" << p.cols << " grid, "
       << report.particles << " particles), linearised at rest:\n";
   out << "  omega_max";
   if (report.exact) out << " = " << report.frequency << " rad/s (eigen-solve);";
@@ -245,9 +247,21 @@ std::string reference_verdict(const SceneParameters& p, const Implementation& im
   return " The reference code is stable at this h on this scene for as long: look at your code.";
 }
 
+// Options that would do nothing are refused rather than ignored: the user meant something.
+void refuse_idle_options(const Options& options) {
+  if (options.every && !options.csv)
+    throw InvalidParameter("--every", quoted_for_terminal(*options.every),
+                           "only with --csv: it chooses which steps the CSV gets");
+  if (options.csv && (options.stability || options.estimate))
+    throw InvalidParameter("--csv", quoted_for_terminal(*options.csv),
+                           std::string("not with ") +
+                               (options.stability ? "--stability" : "--estimate") +
+                               ", which runs no steps to write");
+}
+
 long every_from(const Options& options) {
   const Range whole_steps{1, max_steps, false, false, true};
-  return long(option_number("--every", options.every, whole_steps));
+  return options.every ? long(option_number("--every", *options.every, whole_steps)) : 1;
 }
 
 // --csv naming the scene file (by any path to it) would overwrite the scene: refused before
@@ -295,19 +309,53 @@ DivergenceError with_reference_verdict(const DivergenceError& error, const Simul
   return DivergenceError(error.time(), error.particle(), error.quantity(), why + verdict);
 }
 
+// Ctrl-C (SIGINT), SIGTERM or SIGHUP asks the run to stop after its current step and row: the
+// CSV then ends in whole rows, and the run says where it stopped. A second one ends it at once.
+volatile std::sig_atomic_t stop_signal = 0;
+
+extern "C" void ask_to_stop(int signal) {
+  stop_signal = signal;
+}
+
+void stop_on_signals() {
+  struct sigaction action {};
+  action.sa_handler = ask_to_stop;
+  action.sa_flags = SA_RESTART | SA_RESETHAND;  // writes go on; a second signal kills
+  sigemptyset(&action.sa_mask);
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction before {};
+    sigaction(signal, nullptr, &before);
+    if (before.sa_handler != SIG_IGN) sigaction(signal, &action, nullptr);  // nohup's stay ignored
+  }
+}
+
+// The run stopped by a signal: its number and what was done.
+struct Stopped {
+  int signal;
+  std::string where;
+};
+
 void run_steps(Simulation& sim, long steps, long every, std::optional<CsvOutput>& csv,
                std::optional<Progress>& progress) {
   for (long n = 1; n <= steps; ++n) {
     sim.step();
     if (csv && (n % every == 0 || n == steps)) csv->row(sim);
     if (progress) progress->after_step(n, sim.time());
+    if (stop_signal != 0) {
+      if (csv) csv->finish(sim);
+      std::ostringstream where;
+      where << "at t = " << sim.time() << " s, after " << n << " of " << steps << " steps"
+            << (csv ? "; the CSV holds every row up to then" : "");
+      throw Stopped{int(stop_signal), where.str()};
+    }
   }
   sim.check();  // the energy is watched every few steps only: look once more at the end
   if (csv) csv->finish(sim);
 }
 
 int run(const Options& options) {
-  const long every = every_from(options);
+  const long every = every_from(options);  // a bad value is said first
+  refuse_idle_options(options);
   refuse_the_scene_file(options);
   const SceneParameters p = scene_from(options);
   if (options.stability) {
@@ -382,7 +430,7 @@ int main(int argc, char** argv) {
   app.add_option("--duration", options.duration, "simulated seconds, the scene's `duration`");
   app.add_option("--set", options.sets, "KEY=VALUE: change a scene parameter, e.g. structural.k=40")
       ->take_all();
-  app.add_option("--every", options.every, "write every N-th step (N >= 1)")->capture_default_str();
+  app.add_option("--every", options.every, "with --csv: write every N-th step (N >= 1; default 1)");
   app.add_option("--csv", options.csv, "FILE, or - for standard output (default: no CSV)");
   app.add_flag("--quiet", options.quiet, "no summary, no progress");
   app.add_flag("--estimate", options.estimate,
@@ -393,6 +441,7 @@ int main(int argc, char** argv) {
   // A closed pipe (springlab-run --csv - | head) is then a write error, said and exit 6, rather
   // than a death by signal with no word.
   std::signal(SIGPIPE, SIG_IGN);
+  stop_on_signals();
   // Every message quotes what the user wrote: its control characters are shown, never obeyed.
   const auto say = [](const std::string& message) {
     std::cerr << "springlab-run: " << printable_lines(message) << '\n';
@@ -422,6 +471,9 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     say(out_of_memory());
     return bad_input;
+  } catch (const Stopped& stopped) {
+    say(std::string("stopped by SIG") + sigabbrev_np(stopped.signal) + " " + stopped.where);
+    return 128 + stopped.signal;  // as a shell reports a program its signal ended
   } catch (const std::exception& error) {
     say(std::string("the run stopped on an unexpected error: ") + error.what());
     return failed;

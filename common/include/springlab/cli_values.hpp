@@ -30,8 +30,8 @@ struct OptionSetting {
 };
 
 /// Throws InvalidParameter when one of `assignments` (--set KEY=VALUE) names the parameter of an
-/// option the user also gave ("--dt 0.03 --set step=0.001"): which of the two should win would
-/// be a guess, so neither does.
+/// option the user also gave ("--dt 0.03 --set step=0.001"), or one another assignment names
+/// too: which of the two should win would be a guess, so neither does.
 void refuse_double_settings(const std::vector<std::string>& assignments,
                             std::initializer_list<OptionSetting> options);
 
@@ -43,6 +43,11 @@ void refuse_empty_path(std::string_view option, std::string_view path);
 /// (No space left on device)"), or "" when all of it was: a front end that lost its output says
 /// so and exits 6 rather than 0.
 std::string flush_failure(std::ostream& out);
+
+/// x written with `digits` significant digits, or more (up to 17) until it reads differently from
+/// `other`: "h = 0.00999999 s is below the limit 0.01 s", never "0.01 s ... 0.01 s", and a
+/// growth of 1.000002 a step is not written "1".
+std::string number_apart(double x, double other, int digits = 6);
 
 /// How long `seconds` of wall time is, in words a person reads at a glance: "45 s",
 /// "12 minutes", "3.4 hours", "2.3 days", "14 years".

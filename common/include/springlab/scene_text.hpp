@@ -28,7 +28,8 @@ std::string printable(std::string_view text);
 /// printable(text), but line ends and tabs kept: for a whole message of several lines.
 std::string printable_lines(std::string_view text);
 
-/// printable(text) in double quotes.
+/// printable(text) in double quotes; a text longer than 120 bytes as its first 100 and its
+/// length, e.g. "0.000000...\" (100000 bytes): a pasted file is not echoed whole.
 std::string quoted_for_terminal(std::string_view text);
 
 /// Whether `text` is valid UTF-8 (no overlong forms, surrogates or values above U+10FFFF).
