@@ -168,7 +168,9 @@ std::string Range::describe(std::string_view key, std::string_view unit) const {
   return text;
 }
 
-void validate(const SceneParameters& p) {
+namespace {
+
+void validate_fields(const SceneParameters& p, bool guard_memory) {
   for_each_field(p, [](const FieldInfo& info, const auto& value) { check_range(info, value); });
   const double particles = double(p.rows) * double(p.cols);
   if (particles < 2)
@@ -178,7 +180,7 @@ void validate(const SceneParameters& p) {
   // are read from /proc only for a run big enough to meet them (validate() runs at every
   // change of a parameter; a process that could start at all has more than small_run).
   constexpr double small_run = 64.0 * 1024 * 1024;  // B
-  if (estimated_bytes(p) > small_run) check_memory(p, available_memory());
+  if (guard_memory && estimated_bytes(p) > small_run) check_memory(p, available_memory());
   select_particles("pinned", p.pinned, p.rows, p.cols);
   select_particles("displaced", p.displaced, p.rows, p.cols);
   select_particles("pushed", p.pushed, p.rows, p.cols);
@@ -189,6 +191,16 @@ void validate(const SceneParameters& p) {
                            "at most " + number(max_steps) + " steps in one run");
   if (!is_integrator_name(p.integrator))
     throw InvalidParameter("integrator", "\"" + p.integrator + "\"", integrator_choices());
+}
+
+}  // namespace
+
+void validate(const SceneParameters& p) {
+  validate_fields(p, true);
+}
+
+void validate_built(const SceneParameters& p) {
+  validate_fields(p, false);
 }
 
 void set_number(SceneParameters& p, std::string_view key, double value) {

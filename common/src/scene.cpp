@@ -89,7 +89,7 @@ std::pair<int, std::string> first_non_finite(const Particles& particles) {
 }
 
 void validate(const Scene& scene) {
-  validate(scene.parameters);
+  validate_built(scene.parameters);
   const Particles& particles = scene.particles;
   const int n = particles.size();
   if (particles.velocity.cols() != n || particles.mass.size() != n ||

@@ -167,6 +167,10 @@ void for_each_field(Params& p, Visitor&& visit) {
 /// InvalidParameter naming the field, the value and the allowed range.
 void validate(const SceneParameters& p);
 
+/// validate() without the memory guard, for the parameters of a scene already built: its
+/// memory is taken, and counting it again as still needed refused runs that fit.
+void validate_built(const SceneParameters& p);
+
 /// Sets the field `key` from text, as `--set key=value` does: "40", "true", "verlet". Throws
 /// InvalidParameter for an unknown key (suggesting the nearest one), text that is not a value of
 /// the field's type, or a value out of range.
