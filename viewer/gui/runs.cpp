@@ -1,6 +1,7 @@
 #include "gui/runs.hpp"
 
 #include "springlab/cli_values.hpp"
+#include "springlab/progress.hpp"
 #include "springlab/scene_text.hpp"
 
 #include <SFML/System/Err.hpp>
@@ -115,83 +116,20 @@ void benchmark_report(const std::vector<double>& frames, long steps, double seco
                     : "real time at 60 frames/s: no (p95 above 16.7 ms)\n");
 }
 
-// "2.5 ms": the time one frame takes.
-std::string frame_time_in_words(double seconds) {
-  char text[32];
-  if (seconds < 1.0)
-    std::snprintf(text, sizeof text, "%.3g ms", seconds * 1e3);
-  else
-    std::snprintf(text, sizeof text, "%.3g s", seconds);
-  return text;
+// What a headless run of a fixed number of frames says on stderr while it goes on (progress.hpp):
+// a run of a million frames is not minutes of silence.
+Progress::Settings frame_progress(bool terminal) {
+  Progress::Settings settings;
+  settings.program = "springlab-view";
+  settings.unit = "frame";
+  settings.shorten = "ask for fewer --frames";
+  settings.terminal = terminal;
+  return settings;
 }
-
-// What a headless run of a fixed number of frames says on stderr while it goes on: first, when
-// it will take more than a few minutes, how long (timed over its first frames), so that a run of
-// a million frames is not minutes of silence; then, once it has lasted a few seconds, how far it
-// is and the time left, at most once a second (on a terminal, one line updated in place). Wall
-// time decides only what is printed, never what the run does.
-class FrameProgress {
- public:
-  static constexpr double timing_seconds = 0.5;  // the first frames timed for the estimate
-  static constexpr double warn_above = 180.0;    // s: longer runs are announced
-  static constexpr double quiet_for = 3.0;       // s: no progress in a run's first seconds
-  static constexpr double every = 1.0;           // s between progress lines
-
-  FrameProgress(long frames, std::ostream& err, bool terminal)
-      : frames_(frames), err_(err), terminal_(terminal) {}
-  FrameProgress(const FrameProgress&) = delete;
-  FrameProgress& operator=(const FrameProgress&) = delete;
-  ~FrameProgress() { finish(); }
-
-  /// After frame `n` (1 for the first) of the run.
-  void after_frame(long n) {
-    const double seconds = elapsed();
-    if (!estimated_ && (seconds >= timing_seconds || n >= frames_)) {
-      estimated_ = true;
-      const double per_frame = seconds / double(n);
-      if (per_frame * double(frames_) > warn_above)
-        err_ << "springlab-view: this run will take about "
-             << duration_in_words(per_frame * double(frames_)) << " (" << frames_ << " frames at "
-             << frame_time_in_words(per_frame)
-             << " a frame); press Ctrl-C to stop, or ask for fewer --frames" << std::endl;
-    }
-    if (seconds < next_report_ || n >= frames_) return;
-    char line[160];
-    std::snprintf(line, sizeof line, "springlab-view: frame %ld of %ld (%.3g %%); about %s left", n,
-                  frames_, 100.0 * double(n) / double(frames_),
-                  duration_in_words(seconds / double(n) * double(frames_ - n)).c_str());
-    if (terminal_) {
-      err_ << '\r' << line << "\033[K" << std::flush;  // \033[K: clear what a longer line left
-      line_open_ = true;
-    } else {
-      err_ << line << std::endl;
-    }
-    next_report_ = seconds + every;
-  }
-
-  /// Ends the line updated in place, if one was printed: what follows starts on a line of its own.
-  void finish() {
-    if (line_open_) err_ << '\n' << std::flush;
-    line_open_ = false;
-  }
-
- private:
-  double elapsed() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
-
-  long frames_;
-  std::ostream& err_;
-  bool terminal_;
-  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  double next_report_ = quiet_for;
-  bool estimated_ = false;
-  bool line_open_ = false;
-};
 
 // Said once, when a frame's steps take more than a second: the window then lags far behind the
 // simulated time and seems frozen, which a student would otherwise take for a bug.
-void warn_if_too_slow(const FrameInfo& frame, bool& warned, std::optional<FrameProgress>& progress,
+void warn_if_too_slow(const FrameInfo& frame, bool& warned, std::optional<Progress>& progress,
                       std::ostream& err) {
   if (warned || frame.stepping_seconds <= 1.0) return;
   warned = true;
@@ -249,8 +187,8 @@ int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& er
   const auto start = std::chrono::steady_clock::now();
   auto last = start;
   bool warned_slow = false;
-  std::optional<FrameProgress> progress;
-  if (options.frames > 0) progress.emplace(options.frames, err, options.terminal);
+  std::optional<Progress> progress;
+  if (options.frames > 0) progress.emplace(options.frames, err, frame_progress(options.terminal));
   for (long frame = 0; app.is_open() && (options.frames == 0 || frame < options.frames); ++frame) {
     const bool last_frame = frame + 1 == options.frames;
     app.frame(!options.record.empty() || (last_frame && !options.screenshot.empty()));
@@ -265,7 +203,7 @@ int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& er
     steps += app.last_frame().steps;
     stepping += app.last_frame().stepping_seconds;
     phases.push_back(app.last_frame().phases);
-    if (progress) progress->after_frame(frame + 1);
+    if (progress) progress->after(frame + 1);
   }
   if (progress) progress->finish();
   const double seconds = std::chrono::duration<double>(last - start).count();

@@ -3,12 +3,12 @@
 // does not know, 2 bad input, 3 diverged, 4 task not written yet, 6 the output could not be
 // written (a full disk, a closed pipe: the run stops rather than lose rows without a word).
 #include "runner/csv.hpp"
-#include "runner/progress.hpp"
 #include "springlab/cli_values.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/memory_budget.hpp"
+#include "springlab/progress.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/scene_text.hpp"
 #include "springlab/simulation.hpp"
@@ -23,6 +23,7 @@
 #include <chrono>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
@@ -340,7 +341,12 @@ void run_steps(Simulation& sim, long steps, long every, std::optional<CsvOutput>
   for (long n = 1; n <= steps; ++n) {
     sim.step();
     if (csv && (n % every == 0 || n == steps)) csv->row(sim);
-    if (progress) progress->after_step(n, sim.time());
+    if (progress) {
+      char where[64];
+      std::snprintf(where, sizeof where, "t = %.6g of %.6g s", sim.time(),
+                    sim.parameters().duration);
+      progress->after(n, where);
+    }
     if (stop_signal != 0) {
       if (csv) csv->finish(sim);
       std::ostringstream where;
@@ -372,7 +378,7 @@ int run(const Options& options) {
 
   const Diagnostics start = sim.diagnostics();
   std::optional<Progress> progress;
-  if (!options.quiet) progress.emplace(steps, p.duration, std::cerr, progress_settings());
+  if (!options.quiet) progress.emplace(steps, std::cerr, progress_settings());
   const auto clock_start = std::chrono::steady_clock::now();
   try {
     run_steps(sim, steps, every, csv, progress);
