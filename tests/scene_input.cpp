@@ -176,6 +176,8 @@ TEST_CASE("Messages show what could act on a terminal, escaped", "[core][scene-i
   CHECK(printable("a\x9B[2Jb") == "a\\x9B[2Jb");
   CHECK(printable("a\xE2\x80\xAE"
                   "b") == "a\\u202Eb");
+  CHECK(printable("a\xD8\x9C"
+                  "b") == "a\\u061Cb");  // the Arabic letter mark
   CHECK(printable("a\x1B[31mb\xC2\x9B") == "a\\x1B[31mb\\xC2\\x9B");
   CHECK(printable("Tr\xC3\xA4gheit \xE2\x82\xAC") == "Tr\xC3\xA4gheit \xE2\x82\xAC");  // kept
   CHECK(printable_lines("line 1\n\tline\x1B 2") == "line 1\n\tline\\x1B 2");
@@ -187,6 +189,19 @@ TEST_CASE("Messages quote a long text by its start and its length", "[core][scen
   const std::string quoted = quoted_for_terminal(digits);
   CHECK(quoted == "\"" + digits.substr(0, 100) + "...\" (100000 bytes)");
   CHECK(quoted_for_terminal(std::string(120, 'a')) == "\"" + std::string(120, 'a') + "\"");
+  // So are the values and keys of --set (a tester's third round).
+  SceneParameters p;
+  for (const std::string& assignment : {"structural.k=" + digits, digits + "=1"}) {
+    std::string message;
+    try {
+      set_assignment(p, assignment);
+    } catch (const InvalidParameter& error) {
+      message = error.what();
+    }
+    CAPTURE(message.substr(0, 300));
+    CHECK_THAT(message, Contains("...\" (100000 bytes)"));
+    CHECK(message.size() < 1000);
+  }
   // Cut between characters, never inside one (each "\xC3\xA4" is one).
   std::string umlauts;
   for (int i = 0; i < 100; ++i)

@@ -115,7 +115,7 @@ template <class T>
 void set_field(const FieldInfo& info, T& value, std::string_view text, std::string_view written,
                bool quote) {
   const std::string key(info.key);
-  const std::string shown = quote ? "\"" + std::string(written) + "\"" : std::string(written);
+  const std::string shown = quote ? quoted_for_terminal(written) : std::string(written);
   if constexpr (std::is_same_v<T, std::string>) {
     if (text.empty())
       throw InvalidParameter(key, shown, "an empty text; expected " + std::string(info.meaning));
@@ -148,7 +148,11 @@ void set_parameter_shown(SceneParameters& p, std::string_view key, std::string_v
     found = true;
     set_field(info, value, text, written, quote);
   });
-  if (!found) throw InvalidParameter(printable(key), std::string(written), unknown_key(key));
+  // A key of a pasted page is shown by its start and length, as values are.
+  if (!found)
+    throw InvalidParameter(key.size() > 120 ? quoted_for_terminal(key) : printable(key),
+                           quote ? quoted_for_terminal(written) : std::string(written),
+                           unknown_key(key));
 }
 
 }  // namespace
@@ -176,11 +180,8 @@ void validate_fields(const SceneParameters& p, bool guard_memory) {
   if (particles < 2)
     throw InvalidParameter("rows x cols", std::to_string(p.rows) + " x " + std::to_string(p.cols),
                            "a grid needs at least 2 particles (1 x 2 or larger)");
-  // Before anything of the grid is allocated (select_particles lists particles, too). The limits
-  // are read from /proc only for a run big enough to meet them (validate() runs at every
-  // change of a parameter; a process that could start at all has more than small_run).
-  constexpr double small_run = 64.0 * 1024 * 1024;  // B
-  if (guard_memory && estimated_bytes(p) > small_run) check_memory(p, available_memory());
+  // Before anything of the grid is allocated (select_particles lists particles, too).
+  if (guard_memory) check_memory(p, available_memory());
   select_particles("pinned", p.pinned, p.rows, p.cols);
   select_particles("displaced", p.displaced, p.rows, p.cols);
   select_particles("pushed", p.pushed, p.rows, p.cols);

@@ -292,7 +292,8 @@ bool has_control_character(std::string_view text) {
 // controls): shown, never obeyed, as control characters are.
 namespace {
 bool is_bidi_control(char32_t c) {
-  return c == 0x200E || c == 0x200F || (c >= 0x202A && c <= 0x202E) || (c >= 0x2066 && c <= 0x2069);
+  return c == 0x061C || c == 0x200E || c == 0x200F || (c >= 0x202A && c <= 0x202E) ||
+         (c >= 0x2066 && c <= 0x2069);
 }
 }  // namespace
 
