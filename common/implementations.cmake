@@ -80,8 +80,15 @@ function(springlab_add_implementation target ns student_task)
   endforeach()
   add_library(${target} STATIC "${PROJECT_SOURCE_DIR}/common/impl/implementation_table.cpp"
               ${objects})
+  # Whether the solutions' files are in it (a student release without its prebuilt reference
+  # builds the reference from the student's files).
+  set(solutions_inside 1)
+  if(SPRINGLAB_REFERENCE_FROM STREQUAL "student")
+    set(solutions_inside 0)
+  endif()
   target_compile_definitions(${target} PRIVATE SPRINGLAB_IMPL=${ns}
-                             SPRINGLAB_STUDENT_TASK=${student_task})
+                             SPRINGLAB_STUDENT_TASK=${student_task}
+                             SPRINGLAB_SOLUTIONS_INSIDE=${solutions_inside})
   target_link_libraries(${target} PUBLIC springlab_core PRIVATE springlab_warnings)
   # Archived with gcc-ar, which indexes the link-time-optimised objects (see CMakeLists.txt).
   set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION ${SPRINGLAB_IPO})

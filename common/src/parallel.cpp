@@ -2,7 +2,9 @@
 
 #include "springlab/errors.hpp"
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #ifdef _OPENMP
 #include <omp.h>
@@ -32,5 +34,44 @@ bool parallel_built() {
   return false;
 #endif
 }
+
+namespace detail {
+
+void run_blocks(long n, BlockBody call, void* body) {
+  const int threads = n >= parallel_items ? thread_count() : 1;
+  if (threads == 1) {
+    call(body, 0, n);
+    return;
+  }
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads)
+  {
+    const long t = omp_get_thread_num(), granted = omp_get_num_threads();
+    call(body, n * t / granted, n * (t + 1) / granted);
+  }
+#endif
+}
+
+double add_blocks(long n, double (*call)(void* term, long begin, long end), void* term) {
+  if (n <= sum_block) return call(term, 0, n);
+  const long blocks = (n + sum_block - 1) / sum_block;
+  // Allocated here, not in the threads (see grid_forces.cpp: a thread's malloc arena).
+  std::vector<double> sums(std::size_t(blocks), 0.0);
+  const auto block = [&](long b) {
+    sums[std::size_t(b)] = call(term, b * sum_block, std::min(n, (b + 1) * sum_block));
+  };
+  const int threads = n >= parallel_items ? thread_count() : 1;
+#ifdef _OPENMP
+#pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
+#endif
+  for (long b = 0; b < blocks; ++b)
+    block(b);
+  double total = 0.0;
+  for (const double s : sums)
+    total += s;
+  return total;
+}
+
+}  // namespace detail
 
 }  // namespace springlab

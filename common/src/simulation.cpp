@@ -3,6 +3,7 @@
 #include "springlab/divergence.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/memory_budget.hpp"
+#include "springlab/parallel.hpp"
 #include "springlab/selection.hpp"
 
 #include <algorithm>
@@ -66,6 +67,8 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
   const double floor = 0.5 * particles.mass.sum() * p.spacing * p.spacing;
   reference_energy_ = std::max({start.total(), moderate_energy(scene_.springs), floor}) +
                       external_energy(particles, p, int(pushed_.size()));
+  if (is_kit_model(impl) && particles.size() == p.rows * p.cols)
+    grid_ = GridForces::of(scene_.springs, p.rows, p.cols);
   restart_stretch();
   check_divergence(true);
 }
@@ -74,10 +77,28 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   ++evaluations_;
   const SceneParameters& p = scene_.parameters;
   const Particles& particles = scene_.particles;
-  force_.setZero(2, r.cols());
-  impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
-  if (force_watch_) force_watch_(0, r, v, force_);
-  if (p.gravity.enabled) {
+  const bool pushing = time() < p.push_duration && !pushed_.empty();
+  const bool fast = fast_forces() && !force_watch_;  // a replay watches the plain path's stages
+  if (fast) {
+    // Springs, gravity, masses and pins in one pass per thread; the wind and the push after.
+    GridFinish finish;
+    if (p.gravity.enabled) {
+      finish.gravity = &p.gravity.acceleration;
+      finish.mass = &particles.mass;
+    }
+    if (!wind_ && !pushing) {
+      finish.inverse_mass = &inverse_mass_;
+      finish.acceleration = &acceleration_;
+      if (any_pinned_) finish.pinned = &particles.pinned;
+    }
+    grid_->compute(r, v, force_, finish);
+    if (finish.acceleration) return acceleration_;
+  } else {
+    force_.setZero(2, r.cols());
+    impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
+    if (force_watch_) force_watch_(0, r, v, force_);
+  }
+  if (p.gravity.enabled && !fast) {
     impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
     if (force_watch_) force_watch_(1, r, v, force_);
   }
@@ -86,7 +107,7 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
     wind_->begin_pass();
     impl_->add_wind(*wind_, time(), r, v, force_);
   }
-  if (time() < p.push_duration)
+  if (pushing)
     for (int i : pushed_)
       force_.col(i) += p.push;
   acceleration_.noalias() = force_ * inverse_mass_.asDiagonal();
@@ -194,7 +215,14 @@ std::string Simulation::diagnosis() const {
 
 void Simulation::check_divergence(bool check_energy) const {
   const Particles& particles = scene_.particles;
-  if (!particles.position.allFinite() || !particles.velocity.allFinite()) {
+  const double non_finite_blocks = sum_blocks(particles.size(), [&](long begin, long end) {
+    const long count = end - begin;
+    return particles.position.middleCols(begin, count).allFinite() &&
+                   particles.velocity.middleCols(begin, count).allFinite()
+               ? 0.0
+               : 1.0;
+  });
+  if (non_finite_blocks > 0) {
     const auto [particle, quantity] = first_non_finite(particles);
     std::ostringstream why;
     why << "it is no longer a finite number.";

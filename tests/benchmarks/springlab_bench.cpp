@@ -1,17 +1,24 @@
 // springlab-bench: how fast the force code and each integrator run on the task 5 fabric, from
 // 10×10 to 1000×1000 particles (README.md beside this file explains each row and lists figures).
 //
-//   force/springs/N        the reference accumulate_spring_forces (tasks 1–2) alone: ns_per_spring
+//   force/limit/N          the limit kernel alone: what no force code can avoid (see LimitKernel)
+//   force/springs/N        the reference accumulate_spring_forces (tasks 1–2): the readable code
+//   force/fast/N           the kit's fast path (grid_forces.hpp), springs and dampers only
 //   force/model/N          Simulation::acceleration without wind: springs, gravity, pins
 //   force/model+wind/N     the same with the lab's gusty wind (the task 5 scene as shipped)
 //   force/model+wind-repeat/N  the same at an unchanged t and r (Verlet's later iterations)
+//                          Each force row: ns_per_spring, and over_limit, its time over the
+//                          limit kernel's measured in alternation. The model rows also run on
+//                          two threads in alternation with one: speedup_2_threads.
 //   step/METHOD/N          one step of each of the six integrators on the model without wind:
 //                          steps_per_s, evaluations_per_step, and cost_in_evaluations, the step's
 //                          time over the time of one force evaluation, measured in alternation
 //   rk4-vs-odeint/N        the kit's rk4 and Boost.Odeint's runge_kutta4 stepping the same model
 //                          in alternation: kit_over_odeint < 1 means the kit's step is faster
 //
-// Times are the CPU time of this thread. The counters are the figures: in the step/ and
+// Every row runs on one thread (set_thread_count(1)) except the second half of the
+// speedup_2_threads alternation and the run/ rows; times are the CPU time of this thread, or
+// the wall clock where two threads take part. The counters are the figures: in the step/ and
 // rk4-vs-odeint/ rows the Time column is that of one iteration, a batch of steps and as many
 // evaluations or Odeint steps (one of each from 150×150 up). Every fabric starts as the lab's
 // scene does, flat and at rest under its pinned top row, then falls for 0.3 s (30 symplectic
@@ -19,6 +26,8 @@
 // that state every 1000 steps (explicit Euler, unstable at the lab's h on a fabric, every 100)
 // so no run drifts into overflow.
 #include "odeint_system.hpp"
+#include "springlab/grid_forces.hpp"
+#include "springlab/parallel.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/simulation.hpp"
 #include "springlab/this_implementation.hpp"
@@ -26,8 +35,12 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <ctime>
+#include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -41,6 +54,57 @@ double thread_seconds() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
 }
+
+// s on the wall clock: for what runs on two threads.
+double wall_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// The limit to measure the force code against: per spring only what no force code can avoid,
+// the difference r_q − r_p, a square root for its length, one division, and the scatter of
+// the result d/|d| to both ends, over the same grid links and rows as the fast path, vectorised
+// by the same compiler with the same AVX2 clone. It reads no velocity and no parameter.
+__attribute__((target_clones("avx2", "default"))) void limit_row(const double* __restrict r,
+                                                                 long first, long offset, int count,
+                                                                 double* __restrict f) {
+  const double* rp = r + 2 * first;
+  const double* rq = rp + 2 * offset;
+  for (int j = 0; j < count; ++j) {
+    const double dx = rq[2 * j] - rp[2 * j], dy = rq[2 * j + 1] - rp[2 * j + 1];
+    const double inverse_length = 1.0 / std::sqrt(dx * dx + dy * dy);
+    f[2 * j] = dx * inverse_length;
+    f[2 * j + 1] = dy * inverse_length;
+  }
+}
+
+void scatter(double* __restrict to, const double* __restrict f, int values, double sign) {
+  for (int e = 0; e < values; ++e)
+    to[e] += sign * f[e];
+}
+
+class LimitKernel {
+ public:
+  explicit LimitKernel(const GridForces& grid)
+      : grid_(grid), buffer_(2 * std::size_t(grid.cols())) {}
+  void run(const Vectors& r, Vectors& out) {
+    out.setZero(2, r.cols());
+    const int rows = grid_.rows(), cols = grid_.cols();
+    for (int row = 0; row < rows; ++row)
+      for (const GridForces::Link& link : grid_.links()) {
+        if (row + link.di >= rows) continue;
+        const int count = cols - std::abs(link.dj);
+        const long first = long(row) * cols + std::max(0, -link.dj);
+        const long offset = long(link.di) * cols + link.dj;
+        limit_row(r.data(), first, offset, count, buffer_.data());
+        scatter(out.data() + 2 * first, buffer_.data(), 2 * count, 1.0);
+        scatter(out.data() + 2 * (first + offset), buffer_.data(), 2 * count, -1.0);
+      }
+  }
+
+ private:
+  const GridForces& grid_;
+  std::vector<double> buffer_;
+};
 
 // The task 5 fabric at n×n, with or without its wind, 0.3 s into its fall. One at a time is
 // kept (a 1000×1000 fabric holds 6 million springs): benchmarks are registered grouped by fabric.
@@ -58,6 +122,8 @@ class Fabric {
   Simulation& simulation() { return *simulation_; }
   const Scene& scene() const { return simulation_->scene(); }
   double springs() const { return double(scene().springs.size()); }
+  GridForces& grid() { return *grid_; }
+  LimitKernel& limit() { return *limit_; }
 
   // The model as an integrator sees it (Simulation::step passes the same).
   const AccelerationFunction& acceleration() const { return acceleration_; }
@@ -74,6 +140,8 @@ class Fabric {
     p.integrator = "symplectic-euler";  // for the fall only: one evaluation a step
     simulation_ = std::make_unique<Simulation>(p, implementation());
     simulation_->advance(30);
+    grid_ = GridForces::of(scene().springs, n, n);
+    limit_ = std::make_unique<LimitKernel>(*grid_);
     acceleration_ = [sim = simulation_.get()](const Vectors& r,
                                               const Vectors& v) -> const Vectors& {
       return sim->acceleration(r, v);
@@ -83,30 +151,92 @@ class Fabric {
   int n_;
   bool wind_;
   std::unique_ptr<Simulation> simulation_;
+  std::optional<GridForces> grid_;
+  std::unique_ptr<LimitKernel> limit_;
   AccelerationFunction acceleration_;
 };
+
+// Runs `kit` (one force evaluation) and the limit kernel in alternation, timing each on `clock`;
+// returns their total seconds.
+struct Alternation {
+  double kit = 0.0, limit = 0.0;
+};
+template <typename Kit>
+Alternation alternate_with_limit(benchmark::State& state, Fabric& fabric, Kit kit,
+                                 double (*clock)()) {
+  const Particles& particles = fabric.scene().particles;
+  Vectors limit_out;
+  Alternation seconds;
+  for (auto _ : state) {
+    const double t0 = clock();
+    kit();
+    const double t1 = clock();
+    fabric.limit().run(particles.position, limit_out);
+    benchmark::DoNotOptimize(limit_out.data());
+    seconds.kit += t1 - t0;
+    seconds.limit += clock() - t1;
+  }
+  return seconds;
+}
+
+// ns_per_spring of one evaluation taking `seconds` in all, and over_limit against the kernel.
+void report_against_limit(benchmark::State& state, const Fabric& fabric, double seconds,
+                          double limit_seconds) {
+  state.counters["ns_per_spring"] = 1e9 * seconds / double(state.iterations()) / fabric.springs();
+  state.counters["over_limit"] = seconds / limit_seconds;
+}
+
+void force_limit(benchmark::State& state, int n) {
+  Fabric& fabric = Fabric::get(n, false);
+  const Particles& particles = fabric.scene().particles;
+  Vectors out;
+  const double begin = thread_seconds();
+  for (auto _ : state) {
+    fabric.limit().run(particles.position, out);
+    benchmark::DoNotOptimize(out.data());
+  }
+  state.counters["ns_per_spring"] =
+      1e9 * (thread_seconds() - begin) / double(state.iterations()) / fabric.springs();
+}
 
 void force_springs(benchmark::State& state, int n) {
   Fabric& fabric = Fabric::get(n, false);
   const Scene& scene = fabric.scene();
   const Implementation& impl = implementation();
   Vectors force = Vectors::Zero(2, scene.particles.size());
-  const double begin = thread_seconds();
-  for (auto _ : state) {
-    // Not cleared between calls: this row is the spring code alone. The sums grow but stay
-    // finite (|F| ~ 10 N, at most ~1e7 calls).
-    impl.accumulate_spring_forces(scene.springs, scene.particles.position, scene.particles.velocity,
-                                  force);
-    benchmark::DoNotOptimize(force.data());
-  }
-  const double seconds = thread_seconds() - begin;
-  state.counters["ns_per_spring"] = 1e9 * seconds / double(state.iterations()) / fabric.springs();
+  // Not cleared between calls: this row is the spring code alone. The sums grow but stay finite
+  // (|F| ~ 10 N, at most ~1e7 calls).
+  const Alternation seconds = alternate_with_limit(
+      state, fabric,
+      [&] {
+        impl.accumulate_spring_forces(scene.springs, scene.particles.position,
+                                      scene.particles.velocity, force);
+        benchmark::DoNotOptimize(force.data());
+      },
+      thread_seconds);
+  report_against_limit(state, fabric, seconds.kit, seconds.limit);
   state.counters["springs"] = fabric.springs();
+}
+
+void force_fast(benchmark::State& state, int n) {
+  Fabric& fabric = Fabric::get(n, false);
+  const Particles& particles = fabric.scene().particles;
+  Vectors force;
+  const Alternation seconds = alternate_with_limit(
+      state, fabric,
+      [&] {
+        fabric.grid().compute(particles.position, particles.velocity, force);
+        benchmark::DoNotOptimize(force.data());
+      },
+      thread_seconds);
+  report_against_limit(state, fabric, seconds.kit, seconds.limit);
 }
 
 // Evaluations alternate between the state and a copy moved 1 nm along x: the wind remembers its
 // answers for unchanged t and r (WindField::begin_pass), which only the evaluations after the
-// first of a step enjoy (Verlet's iterations); `repeat` times those instead.
+// first of a step enjoy (Verlet's iterations); `repeat` times those instead. Each iteration
+// times one evaluation on one thread, the limit kernel and one evaluation on two threads, all
+// on the wall clock.
 void force_model(benchmark::State& state, int n, bool wind, bool repeat = false) {
   Fabric& fabric = Fabric::get(n, wind);
   Simulation& simulation = fabric.simulation();
@@ -115,13 +245,27 @@ void force_model(benchmark::State& state, int n, bool wind, bool repeat = false)
   moved.row(0).array() += 1e-9;
   const Vectors* positions[2] = {&particles.position, repeat ? &particles.position : &moved};
   int which = 0;
-  const double begin = thread_seconds();
-  for (auto _ : state)
-    benchmark::DoNotOptimize(
-        simulation.acceleration(*positions[which ^= 1], particles.velocity).data());
-  const double ns = 1e9 * (thread_seconds() - begin) / double(state.iterations());
-  state.counters["ns_per_spring"] = ns / fabric.springs();
-  state.counters["ns_per_particle"] = ns / double(particles.size());
+  double one_thread = 0.0, two_threads = 0.0;
+  const Alternation seconds = alternate_with_limit(
+      state, fabric,
+      [&] {
+        const double t0 = wall_seconds();
+        benchmark::DoNotOptimize(
+            simulation.acceleration(*positions[which ^= 1], particles.velocity).data());
+        const double t1 = wall_seconds();
+        set_thread_count(2);
+        benchmark::DoNotOptimize(
+            simulation.acceleration(*positions[which ^= 1], particles.velocity).data());
+        const double t2 = wall_seconds();
+        set_thread_count(1);
+        one_thread += t1 - t0;
+        two_threads += t2 - t1;
+      },
+      wall_seconds);
+  report_against_limit(state, fabric, one_thread, seconds.limit);
+  state.counters["ns_per_particle"] =
+      1e9 * one_thread / double(state.iterations()) / double(particles.size());
+  state.counters["speedup_2_threads"] = one_thread / two_threads;
 }
 
 // Steps per batch: about 20000 particle-steps, so that reading the clock (a system call of
@@ -211,6 +355,16 @@ void rk4_vs_odeint(benchmark::State& state, int n) {
   state.counters["odeint_steps_per_s"] = double(steps) / odeint_seconds;
 }
 
+// The processor's name as the system gives it: absolute times do not travel between machines.
+std::string processor_name() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  for (std::string line; std::getline(cpuinfo, line);)
+    if (line.starts_with("model name"))
+      if (const auto colon = line.find(':'); colon != std::string::npos)
+        return line.substr(colon + 2);
+  return "unknown";
+}
+
 void register_all() {
   const std::vector<std::string> methods = integrator_names();
   for (const int n : {10, 30, 100, 300, 1000}) {
@@ -218,7 +372,9 @@ void register_all() {
       benchmark::RegisterBenchmark((name + "/" + std::to_string(n)).c_str(), function, n)
           ->Unit(benchmark::kMicrosecond);
     };
+    add("force/limit", force_limit);
     add("force/springs", force_springs);
+    add("force/fast", force_fast);
     add("force/model", [](benchmark::State& s, int m) { force_model(s, m, false); });
     for (const std::string& method : methods) {
       // The implicit step's matrix at 1000×1000 (2 million unknowns, ~100 million entries and
@@ -243,6 +399,10 @@ int main(int argc, char** argv) {
   int count = int(args.size());
   benchmark::Initialize(&count, args.data());
   if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
+  benchmark::AddCustomContext("processor", processor_name());
+  benchmark::AddCustomContext(
+      "threads", parallel_built() ? "1, and 2 where a row says so" : "1 (built without OpenMP)");
+  set_thread_count(1);
   register_all();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -34,7 +34,17 @@ struct Implementation {
   void (*add_gravity)(const Eigen::VectorXd&, const Vec2&, Vectors&) = nullptr;
   void (*add_wind)(const WindField&, double, const Vectors&, const Vectors&, Vectors&) = nullptr;
   void (*hold_pinned)(const std::vector<bool>&, Vectors&) = nullptr;
+
+  /// The solutions' own table points to itself here (a student release's stand-in for them does
+  /// not): only that table, never a copy with some functions replaced, lets the kit's model take
+  /// its fast path (grid_forces.hpp), which computes what these functions compute.
+  const Implementation* kit_model = nullptr;
 };
+
+/// Whether impl is the solutions' own table itself (see Implementation::kit_model).
+inline bool is_kit_model(const Implementation& impl) {
+  return impl.kit_model == &impl;
+}
 
 /// The reference implementation (solutions/).
 const Implementation& reference_implementation();

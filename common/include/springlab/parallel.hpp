@@ -19,4 +19,36 @@ void set_thread_count(int n);
 /// Whether the kit was built with OpenMP (thread_count() can exceed 1).
 bool parallel_built();
 
+/// Below this many items (particles, springs) a pass runs on one thread: starting threads costs
+/// a few microseconds, as much as a pass over some 10,000 particles.
+inline constexpr long parallel_items = 16384;
+
+/// The items a sum_blocks term adds up at a time: fixed, so the blocks and the order in which
+/// their sums are added do not depend on the thread count.
+inline constexpr long sum_block = 8192;
+
+namespace detail {
+using BlockBody = void (*)(void* body, long begin, long end);
+void run_blocks(long n, BlockBody call, void* body);
+double add_blocks(long n, double (*call)(void* term, long begin, long end), void* term);
+}  // namespace detail
+
+/// Calls body(begin, end) on consecutive blocks that cover [0, n) exactly once, one block per
+/// thread (thread_count() of them from parallel_items up). For element-wise work, whose result
+/// does not depend on the split.
+template <typename Body>
+void for_blocks(long n, Body&& body) {
+  detail::run_blocks(
+      n, [](void* b, long begin, long end) { (*static_cast<Body*>(b))(begin, end); }, &body);
+}
+
+/// The sum of term(begin, end) over the blocks [0, sum_block), [sum_block, 2 sum_block), … of
+/// [0, n), added in that order: the same bits for any number of threads, and for n ≤ sum_block
+/// exactly term(0, n).
+template <typename Term>
+double sum_blocks(long n, Term&& term) {
+  return detail::add_blocks(
+      n, [](void* t, long begin, long end) { return (*static_cast<Term*>(t))(begin, end); }, &term);
+}
+
 }  // namespace springlab

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "springlab/diagnostics.hpp"
+#include "springlab/grid_forces.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
@@ -65,7 +66,14 @@ class Simulation {
   /// spring (impl.accumulate_spring_forces), then the forces the scene enables: gravity
   /// (impl.add_gravity), wind at the step's start time (impl.add_wind), the push; then
   /// impl.hold_pinned when any particle is pinned. A scene pays only for what it enables.
+  /// With the kit's own model (is_kit_model(impl)) on a grid of whole spring families the springs,
+  /// gravity, masses and pins take the fast path (grid_forces.hpp), equal up to rounding.
   const Vectors& acceleration(const Vectors& r, const Vectors& v);
+
+  /// Whether acceleration() takes the fast path; set_fast_forces(false) turns it off (to compare
+  /// the two), true turns it back on where the scene allows it.
+  bool fast_forces() const { return grid_.has_value() && use_grid_; }
+  void set_fast_forces(bool on) { use_grid_ = on; }
 
   /// s: the time it started from (continue_from) plus the steps taken.
   double time() const { return start_time_ + double(steps_) * scene_.parameters.step; }
@@ -127,6 +135,8 @@ class Simulation {
   double stretch_time_ = 0.0;               // s, its time
   long stretch_steps_ = 0;                  // steps since then
   ForceWatch force_watch_;                  // a replay's look at the forces
+  std::optional<GridForces> grid_;          // the fast path, where the scene allows it
+  bool use_grid_ = true;
 };
 
 }  // namespace springlab

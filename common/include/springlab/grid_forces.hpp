@@ -1,0 +1,70 @@
+// The reference model's fast path: the spring and damper forces (1.1), (1.2) of a scene whose
+// springs are whole regular families on its rows × cols grid, as every lab scene's are. Each
+// family is a "link": every spring joins the particle at [row, col] to the one at
+// [row + di, col + dj], all with one k, b and ℓ0. A row of a link is then two contiguous runs of
+// particles, so the compiler vectorises it, with no index per spring to read.
+//
+// Only the kit's own model uses it (Simulation, with the reference implementation): students'
+// functions and the reference task functions they compare with stay as they are. The result
+// equals accumulate_spring_forces up to rounding (the sums are taken in another order; the
+// tests compare the two on every scene). Large grids are split over thread_count() threads
+// (parallel.hpp) by rows; every particle's sum is taken in the same order whatever the split,
+// so the result is the same to the bit for any number of threads.
+#pragma once
+
+#include "springlab/types.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace springlab {
+
+/// What the fast path does after the springs, each thread on its own rows (the model of
+/// Simulation::acceleration when the scene has neither wind nor push).
+struct GridFinish {
+  const Vec2* gravity = nullptr;                  ///< g, m/s²: adds m_i g (5.2) when set
+  const Eigen::VectorXd* mass = nullptr;          ///< m_i, kg (needed with gravity)
+  const Eigen::VectorXd* inverse_mass = nullptr;  ///< 1/m_i: then acceleration = F_i / m_i
+  const std::vector<bool>* pinned = nullptr;      ///< pinned particles get zero acceleration
+  Vectors* acceleration = nullptr;                ///< m/s², resized (with inverse_mass)
+};
+
+class GridForces {
+ public:
+  /// The fast path for `springs` on a rows × cols grid (particle [row, col] has the index
+  /// row·cols + col, equation (2.1)), or nothing when the springs are not whole regular
+  /// families: a spring missing, doubled or with its own k, b or ℓ0.
+  static std::optional<GridForces> of(const std::vector<Spring>& springs, int rows, int cols);
+
+  /// force = every spring's and damper's force on each particle, N (resized to 2 × rows·cols);
+  /// then `finish`. Uses thread_count() threads from `parallel_particles` particles up.
+  void compute(const Vectors& r, const Vectors& v, Vectors& force, const GridFinish& finish = {});
+
+  /// Below this many particles one thread is faster than two (a parallel region costs a few
+  /// microseconds; a 50 × 50 fabric's forces about 40).
+  static constexpr int parallel_particles = 2500;
+
+  /// One family: every spring joins [row, col] to [row + di, col + dj] (di ≥ 0).
+  struct Link {
+    int di = 0, dj = 0;
+    double k = 0.0;            ///< N/m
+    double b = 0.0;            ///< N·s/m
+    double rest_length = 0.0;  ///< ℓ0, m
+  };
+  /// In the order the springs list first names them.
+  const std::vector<Link>& links() const { return links_; }
+  int rows() const { return rows_; }
+  int cols() const { return cols_; }
+
+ private:
+  GridForces(std::vector<Link> links, int rows, int cols);
+  void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
+                    const GridFinish& finish, double* buffer) const;
+  void finish_row(int row, Vectors& force, const GridFinish& finish) const;
+
+  std::vector<Link> links_;
+  int rows_ = 0, cols_ = 0, deepest_ = 0;  // deepest_: the largest di
+  std::vector<double> buffers_;            // 2·cols per thread: one row of a link's forces
+};
+
+}  // namespace springlab
