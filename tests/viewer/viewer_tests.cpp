@@ -437,3 +437,129 @@ TEST_CASE("a grid too large for OpenGL lines is drawn in memory, each particle w
   }
   CHECK(wrong == 0);
 }
+
+// Issue 14: a level of detail. What is drawn is counted (DrawCounts), never timed.
+TEST_CASE("a 200x200 fabric in the default window is drawn as a surface, a 4x4 grid as springs",
+          "[viewer][detail]") {
+  App app(options_for("task5"));
+  SceneParameters& p = app.session().parameters();
+  p.rows = p.cols = 200;
+  app.session().apply();
+  app.session().set_running(false);  // at rest: every spring at its rest length
+  app.frame();
+  app.frame(true);
+  app.captured().saveToFile(shot("surface-200"));
+  const double pixels = p.spacing * app.camera().pixels_per_metre();
+  const int stride = surface_stride(p, app.camera());
+  CAPTURE(pixels, stride);
+  REQUIRE(pixels < surface_below_pixels);  // the default window shows 200 spacings in ~420 px
+  const DrawCounts& drawn = app.last_frame().drawn;
+  CHECK(drawn.surface);
+  CHECK(drawn.springs == 0);
+  // Cells of at least surface_cell_pixels: every stride-th grid line, and the last.
+  CHECK(stride * pixels >= surface_cell_pixels);
+  CHECK((stride - 1) * pixels < surface_cell_pixels);
+  const long lines = (199 + stride - 1) / stride + 1;
+  CHECK(drawn.triangles == 2 * (lines - 1) * (lines - 1));
+  CHECK(drawn.dots == 200);  // the pinned top row, still marked
+  // The surface has the springs' colour scale: the cloth at rest is drawn at_rest.
+  const Simulation& sim = *app.session().primary();
+  const sf::Vector2f middle = app.camera().to_screen(sim.particles().position.col(100 * 200 + 100));
+  CHECK(text(pixel_at(app.captured(), middle)) == text(colour::at_rest));
+
+  // Zoomed in until a spacing spans surface_below_pixels or more: the springs again.
+  sf::Event wheel;
+  wheel.type = sf::Event::MouseWheelScrolled;
+  const sf::Vector2f centre = app.camera().viewport().centre();
+  wheel.mouseWheelScroll = {sf::Mouse::VerticalWheel, 3.0f, int(centre.x), int(centre.y)};
+  app.handle(mouse_moved(centre));
+  for (int k = 0; k < 10 && p.spacing * app.camera().pixels_per_metre() < surface_below_pixels; ++k)
+    app.handle(wheel);
+  app.frame();
+  CHECK_FALSE(app.last_frame().drawn.surface);
+  CHECK(app.last_frame().drawn.springs > 0);
+  CHECK(app.last_frame().drawn.triangles == 0);
+
+  p.rows = p.cols = 4;
+  app.session().apply();
+  app.frame();
+  app.frame();
+  const DrawCounts& small = app.last_frame().drawn;
+  CHECK_FALSE(small.surface);
+  CHECK(small.triangles == 0);
+  CHECK(small.springs == long(app.session().primary()->scene().springs.size()));
+  CHECK(small.dots == 16);
+}
+
+namespace {
+
+// A run's state after 40 frames of 1/60 s with edits between them, as a hand would make them.
+struct Ran {
+  Vectors position, velocity;
+  double time = 0.0;
+  std::vector<float> energy;
+  std::vector<bool> pinned;
+};
+
+Ran run_with_edits(Stepping stepping) {
+  AppOptions options = options_for("task5");
+  options.stepping = stepping;
+  App app(options);
+  CHECK(app.stepping_thread() == (stepping == Stepping::thread));
+  SceneParameters& p = app.session().parameters();
+  p.rows = p.cols = 30;
+  app.session().apply();
+  for (int k = 0; k < 40; ++k) {
+    if (k == 10) app.session().toggle_pin(31);
+    if (k == 15) app.session().push(400, Vec2(0.5, 1.0));
+    if (k == 20) {
+      app.session().parameters().structural.k = 35.0;
+      app.session().apply();  // a new k mid-motion
+    }
+    if (k == 25) app.session().grab(899);
+    if (k >= 25 && k < 30) app.session().drag_to(Vec2(40.0 + k, -20.0));
+    if (k == 30) app.session().release();
+    app.frame();
+  }
+  const Simulation& sim = *app.session().primary();  // session() waits for the thread
+  return {sim.particles().position, sim.particles().velocity, sim.time(),
+          app.session().history().total, sim.particles().pinned};
+}
+
+}  // namespace
+
+TEST_CASE("the stepping thread gives the same run as stepping in the window's thread",
+          "[viewer][thread]") {
+  // Headless frames of exactly 1/60 s take the same steps in both: the thread changes where
+  // they are taken, not which, and the edits reach the simulation between the same steps.
+  const Ran alone = run_with_edits(Stepping::synchronous);
+  const Ran threaded = run_with_edits(Stepping::thread);
+  CHECK(threaded.time == alone.time);
+  CHECK(alone.time > 0.6);
+  CHECK(threaded.pinned == alone.pinned);
+  CHECK(threaded.energy == alone.energy);
+  CHECK((threaded.position - alone.position).cwiseAbs().maxCoeff() == 0.0);
+  CHECK((threaded.velocity - alone.velocity).cwiseAbs().maxCoeff() == 0.0);
+}
+
+TEST_CASE("with a stepping thread, a dragged particle follows the mouse and the panel edits",
+          "[viewer][thread]") {
+  AppOptions options = options_for("task4");
+  options.stepping = Stepping::thread;
+  App app(options);
+  app.frame();
+  const Vec2 start = app.session().primary()->particles().position.col(4);
+  const sf::Vector2f from = app.camera().to_screen(start);
+  const sf::Vector2f to(std::round(from.x) + 60, std::round(from.y) - 40);
+  drag(app, from, to);
+  // Let go where it was dropped: it moved with the mouse, and is free again.
+  CHECK_FALSE(app.session().pinned(4));
+  CHECK((app.session().primary()->particles().position.col(4) - start).norm() > 0.1);
+  // The panel's Reset button, clicked while the thread steps, starts the scene afresh.
+  for (int k = 0; k < 10; ++k)
+    app.frame();
+  REQUIRE(app.session().time() > 0.1);
+  click(app, centre_of(*app.panel().rect("reset")));
+  CHECK(app.session().time() < 0.1);
+  CHECK(app.session().running());
+}

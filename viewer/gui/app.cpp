@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 namespace springlab::view {
 namespace {
@@ -38,6 +39,9 @@ App::App(const AppOptions& options)
               context()),
       glue_(window_),
       session_(options.scene) {
+  const bool thread = options.stepping == Stepping::thread ||
+                      (options.stepping == Stepping::automatic && !options.fixed_frame_time);
+  if (thread) stepper_ = std::make_unique<Stepper>();
   if (options.frame_rate_limit) window_.setFramerateLimit(60);
   keep_gl_driver_loaded();
   layout();
@@ -60,6 +64,7 @@ void App::layout() {
 }
 
 void App::fit() {
+  finish_stepping();  // reads the particles
   layout();
   for (int v = 0; v < views(); ++v)
     if (const Simulation* sim = simulation_of(v))
@@ -79,7 +84,12 @@ int App::hovered() const {
   return particle_at(*sim, cameras_[std::size_t(view)], mouse_);
 }
 
+void App::finish_stepping() {
+  if (stepper_) stepper_->wait();
+}
+
 void App::handle(const sf::Event& event) {
+  finish_stepping();  // an event may edit the session or read its particles
   glue_.handle(event);
   switch (event.type) {
     case sf::Event::Closed:
@@ -180,6 +190,16 @@ void App::frame(bool capture) {
     return seconds;
   };
   FramePhases phases;
+  finish_stepping();  // the session is the window's again until this frame's steps start
+  const double waited = lap();
+  if (stepper_) {
+    phases.thread = info_.stepping_seconds = take_stepping_seconds();
+    if (launched_steps_ > 0) {
+      const double each = phases.thread / double(launched_steps_);
+      step_seconds_ = step_seconds_ > 0.0 ? 0.8 * step_seconds_ + 0.2 * each : each;
+    }
+    launched_steps_ = 0;
+  }
   sf::Event event;
   while (window_.pollEvent(event))
     handle(event);
@@ -189,10 +209,13 @@ void App::frame(bool capture) {
   layout();
   info_.hovered = hovered();
   const double events = lap();
-  // Step first: the panel, the plots, the labels and the scene then all show the state after
-  // this frame's steps (one time, one set of energies), and a click in the panel shows at once.
-  info_.steps = session_.frame(options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds);
-  info_.stepping_seconds = phases.stepping = lap();
+  const double simulated = options_.fixed_frame_time ? 1.0 / 60.0 : info_.frame_seconds;
+  if (!stepper_) {
+    // Step first: the panel, the plots, the labels and the scene then all show the state after
+    // this frame's steps (one time, one set of energies), and a click in the panel shows at once.
+    info_.steps = session_.frame(simulated);
+    info_.stepping_seconds = phases.stepping = lap();
+  }
   Viewport scene_area = cameras_[0].viewport();
   scene_area.width *= float(views());
   const PanelRequests requests = panel_.draw(session_, settings_, info_, scene_area);
@@ -201,7 +224,16 @@ void App::frame(bool capture) {
     fit();
     fitted_to_ = session_.fresh_starts();
   }
+  plan_drawing();
   phases.panel = events + lap();
+  if (stepper_) {
+    // From here on the window reads only its copy (plan_) until finish_stepping().
+    const long steps = info_.steps = session_.steps_due(simulated, most_steps());
+    info_.dropped_steps = session_.dropped_steps();
+    if (steps > 0) stepper_->start([this, steps] { session_.advance(steps); });
+    launched_steps_ = steps;
+    phases.stepping = waited + lap();
+  }
   draw_scenes();
   phases.scene = lap();
   draw_labels();
@@ -218,15 +250,47 @@ void App::frame(bool capture) {
   info_.phases = phases;
 }
 
+// With a stepping thread in real time, a frame takes no more steps than the thread can take in
+// 90 % of a frame at 60 frames/s (at least one): a scene that steps slower than real time then
+// runs slower, at 60 frames/s, rather than at a few frames a second that each wait for a tenth
+// of a second's steps. Headless runs with a fixed frame time take every step.
+long App::most_steps() const {
+  if (options_.fixed_frame_time || !(step_seconds_ > 0.0)) return std::numeric_limits<long>::max();
+  const double budget = 0.9 * session_.pacing().frame_interval;
+  return std::max(1L, long(std::min(budget / step_seconds_, 1e9)));
+}
+
+void App::plan_drawing() {
+  DrawPlan& plan = plan_;
+  plan.views = views();
+  plan.overlay = session_.compare() == Compare::overlay && session_.reference();
+  plan.note_reference = session_.reference() != nullptr;
+  plan.highlighted = session_.problem().kind == Problem::Kind::diverged
+                         ? session_.problem().particle
+                         : info_.hovered;
+  plan.arrows_on = settings_.force_arrows && session_.grabbed() < 0 ? info_.hovered : -1;
+  for (int v = 0; v < 2; ++v) {
+    const Simulation* sim = v < plan.views ? simulation_of(v) : nullptr;
+    RunState& run = plan.runs[std::size_t(v)];
+    if (sim)
+      run.capture(*sim, plan.arrows_on >= 0);
+    else
+      run.sim = nullptr;
+  }
+  if (plan.overlay)
+    plan.ghost.capture(*session_.reference(), false);
+  else
+    plan.ghost.sim = nullptr;
+  label_time_ = session_.time();
+}
+
 void App::draw_scenes() {
   window_.clear(colour::background);
   panel_.draw_backgrounds(window_);
   const sf::View whole = window_.getView();
   const sf::Vector2u size = window_.getSize();
-  const int highlighted = session_.problem().kind == Problem::Kind::diverged
-                              ? session_.problem().particle
-                              : info_.hovered;
-  for (int v = 0; v < views(); ++v) {
+  DrawCounts drawn;
+  for (int v = 0; v < plan_.views; ++v) {
     const Camera& camera = cameras_[std::size_t(v)];
     const Viewport& area = camera.viewport();
     // A view per viewport clips each run to its half in side-by-side mode.
@@ -235,19 +299,19 @@ void App::draw_scenes() {
                                    area.width / float(size.x), area.height / float(size.y)));
     window_.setView(clip);
     DrawOptions options = settings_.draw;
-    if (v == 0 && session_.compare() == Compare::overlay && session_.reference()) {
+    if (v == 0 && plan_.ghost.sim) {
       DrawOptions ghost = options;
       ghost.ghost = true;
-      draw_scene(window_, *session_.reference(), camera, ghost);
+      drawn += draw_scene(window_, plan_.ghost, camera, ghost);
     }
-    const Simulation* sim = simulation_of(v);
-    if (!sim) continue;
-    options.highlighted = highlighted;
-    draw_scene(window_, *sim, camera, options);
-    if (settings_.force_arrows && info_.hovered >= 0 && session_.grabbed() < 0)
-      draw_force_arrows(window_, *sim, camera, info_.hovered);
+    const RunState& run = plan_.runs[std::size_t(v)];
+    if (!run.sim) continue;
+    options.highlighted = plan_.highlighted;
+    drawn += draw_scene(window_, run, camera, options);
+    if (plan_.arrows_on >= 0) draw_force_arrows(window_, run, camera, plan_.arrows_on);
   }
   window_.setView(whole);
+  info_.drawn = drawn;
 }
 
 void App::draw_labels() {
@@ -261,16 +325,15 @@ void App::draw_labels() {
   char label[32];
   std::snprintf(label, sizeof label, "%g m", metres);
   draw->AddText(ImVec2(left.x, left.y - 18), text, label);
-  label_time_ = session_.time();
   std::snprintf(label, sizeof label, "t = %.2f s", label_time_);
   draw->AddText(ImVec2(area.left + 20, area.top + 10), text, label);
-  if (views() == 2) {
+  if (plan_.views == 2) {
     draw->AddText(ImVec2(area.left + 20, area.top + 30), text, "your code");
     const Viewport& right = cameras_[1].viewport();
     draw->AddText(ImVec2(right.left + 20, right.top + 30), text, "the reference");
     draw->AddLine(ImVec2(right.left, right.top), ImVec2(right.left, right.top + right.height),
                   IM_COL32(80, 80, 90, 255));
-  } else if (session_.reference()) {
+  } else if (plan_.note_reference) {
     draw->AddText(ImVec2(area.left + 20, area.top + 30), text,
                   "yours in colour, the reference in blue");
   }

@@ -199,6 +199,10 @@ void Panel::stepping_section(Session& session, const FrameInfo& frame) {
               1e3 * frame.stepping_seconds);
   ImGui::Text("last frame: %ld steps = %.1f ms simulated", frame.steps,
               1e3 * double(frame.steps) * p.step);
+  if (frame.dropped_steps > 0)
+    ImGui::TextColored(warning_colour,
+                       "slower than real time: %ld steps dropped (stepping cannot keep up)",
+                       frame.dropped_steps);
 }
 
 void Panel::display_section(Session& session, ViewSettings& settings) {

@@ -28,7 +28,8 @@ struct ViewSettings {
 /// rasterising of the scene and the panel counts in `display`, not where it was asked for.
 struct FramePhases {
   double panel = 0.0;     ///< events and building the ImGui panel and plots
-  double stepping = 0.0;  ///< advancing the simulation
+  double stepping = 0.0;  ///< advancing the simulation, or waiting for the stepping thread to
+  double thread = 0.0;    ///< the stepping thread's own time for the steps it finished
   double scene = 0.0;     ///< the springs and particles: geometry, pixels, texture upload
   double imgui = 0.0;     ///< handing ImGui's triangles to OpenGL
   double display = 0.0;   ///< rasterising (software OpenGL) and swapping the buffers
@@ -40,7 +41,9 @@ struct FrameInfo {
   double stepping_seconds = 0.0;  ///< of which stepping the simulation
   FramePhases phases;             ///< the phases of the frame before, timed
   long steps = 0;                 ///< steps taken in the last frame
+  long dropped_steps = 0;         ///< steps due in the last frame that it could not take
   int hovered = -1;               ///< particle under the mouse
+  DrawCounts drawn;               ///< what the scene's views drew in the last frame
 };
 
 struct PanelRequests {

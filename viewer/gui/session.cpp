@@ -241,6 +241,13 @@ double Session::time() const {
 }
 
 long Session::frame(double seconds) {
+  const long steps = steps_due(seconds);
+  advance(steps);
+  return steps;
+}
+
+long Session::steps_due(double seconds, long most) {
+  dropped_steps_ = 0;
   if (!running_ || !primary_) return 0;
   long steps = pacing_.steps_per_frame;
   if (pacing_.real_time) {
@@ -248,11 +255,11 @@ long Session::frame(double seconds) {
     owed_steps_ += pacing_.real_time_factor * lasted / parameters_.step;
     // A tiny h can owe more steps than a frame may take (or a long holds): the rest is dropped.
     const double due = std::floor(owed_steps_ + 1e-9);  // 3 × (1/3) is one whole step
-    steps = long(std::min(due, double(pacing_.max_steps_per_frame)));
+    steps = long(std::min({due, double(pacing_.max_steps_per_frame), double(most)}));
     owed_steps_ = due > double(steps) ? 0.0 : owed_steps_ - double(steps);
+    dropped_steps_ = long(std::min(due - double(steps), 1e18));  // a tiny h owes ~1e300
   }
-  advance(std::max(steps, 0L));
-  return steps;
+  return std::max(steps, 0L);
 }
 
 void Session::single_step() {

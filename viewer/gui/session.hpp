@@ -7,6 +7,7 @@
 #include "springlab/parameters.hpp"
 #include "springlab/simulation.hpp"
 
+#include <limits>
 #include <memory>
 #include <optional>
 #include <set>
@@ -90,6 +91,14 @@ class Session {
   /// Advances a frame that lasted `seconds` (the headless runs and tests pass exactly 1/60 s,
   /// so they repeat to the bit) when running; returns the steps taken.
   long frame(double seconds);
+  /// frame() in two halves, for a stepping thread: the steps due for a frame that lasted
+  /// `seconds` (0 when not running), at most `most` of them in real-time mode (the rest are
+  /// dropped, see dropped_steps), counted as taken; then advance() takes them.
+  long steps_due(double seconds, long most = std::numeric_limits<long>::max());
+  /// The steps the last steps_due dropped because a frame may not take so many.
+  long dropped_steps() const { return dropped_steps_; }
+  /// Takes `steps` steps h (fewer when the run stops on a problem) and records the history.
+  void advance(long steps);
   /// One step h, also when paused.
   void single_step();
 
@@ -129,7 +138,6 @@ class Session {
   std::unique_ptr<Simulation> make(const Implementation& impl, const Simulation* previous) const;
   void rebuild(bool keep_state);
   void report(const std::exception& error, const std::string& whose);
-  void advance(long steps);
   template <class Edit>
   void edit_each(Edit&& edit);
 
@@ -140,6 +148,7 @@ class Session {
   bool running_ = true;
   Pacing pacing_;
   double owed_steps_ = 0.0;  // the fraction of a step carried to the next frame
+  long dropped_steps_ = 0;
   std::unique_ptr<Simulation> primary_, reference_;
   Problem problem_;
   History history_;
