@@ -109,7 +109,7 @@ TEST_CASE("Fast path: the same bits whatever the number of threads", "[fast]") {
   SceneParameters p = task_scene(5);
   p.rows = 80;
   p.cols = 70;
-  p.wind.enabled = false;
+  p.wind.enabled = true;  // its memory of w too
   Simulation simulation(p, implementation());
   REQUIRE(simulation.fast_forces());
   REQUIRE(p.rows * p.cols >= GridForces::parallel_particles);

@@ -107,7 +107,7 @@ GridForces::GridForces(std::vector<Link> links, int rows, int cols)
 // taken from the thread that owns that row: so each particle's sum runs over the rows above it
 // in the same order whatever the split, with no waiting between threads.
 void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v,
-                              Vectors& force, const GridFinish& finish, double* buffer) const {
+                              Vectors& force, const GridFinish& finish, double* buffer) {
   double* out = force.data();
   const long begin = 2L * first_row * cols_, end = 2L * end_row * cols_;
   std::fill(out + begin, out + end, 0.0);
@@ -124,11 +124,13 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
       if (own_q) subtract(out + 2 * (first + offset), buffer, 2 * count);
     }
     // No later row has a spring ending on this one: finish it while it is in the cache.
-    if (row >= first_row) finish_row(row, force, finish);
+    if (row >= first_row) finish_row(row, r, v, force, finish);
   }
 }
 
-void GridForces::finish_row(int row, Vectors& force, const GridFinish& finish) const {
+// Each thread writes only its own rows of force, the acceleration and the wind's memory.
+void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, Vectors& force,
+                            const GridFinish& finish) {
   const int begin = row * cols_, end = begin + cols_;
   double* f = force.data();
   if (finish.gravity) {
@@ -137,6 +139,16 @@ void GridForces::finish_row(int row, Vectors& force, const GridFinish& finish) c
     for (int i = begin; i < end; ++i) {
       f[2 * i] += m[i] * gx;  // (5.2)
       f[2 * i + 1] += m[i] * gy;
+    }
+  }
+  if (finish.wind) {
+    const bool same_time = finish.time == wind_time_;
+    for (int i = begin; i < end; ++i) {
+      if (!same_time || wind_position_.col(i) != r.col(i)) {
+        wind_position_.col(i) = r.col(i);
+        wind_velocity_.col(i) = finish.wind->velocity_at(finish.time, r.col(i));
+      }
+      force.col(i) += finish.wind->drag() * (wind_velocity_.col(i) - v.col(i));  // (5.3)
     }
   }
   if (!finish.inverse_mass) return;
@@ -160,6 +172,11 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
   // Sized here, before any thread starts: a thread that allocated would get its own malloc
   // arena, 64 MiB of address space that a memory limit (ulimit -v) would have to hold.
   buffers_.resize(std::size_t(threads) * 2 * cols_);
+  if (finish.wind && wind_position_.cols() != n) {
+    wind_position_.resize(2, n);
+    wind_velocity_.resize(2, n);
+    wind_time_ = std::numeric_limits<double>::quiet_NaN();
+  }
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads) if (threads > 1)
   {
@@ -172,6 +189,7 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     compute_rows(first_row, end_row, r, v, force, finish,
                  buffers_.data() + std::size_t(t) * 2 * cols_);
   }
+  if (finish.wind) wind_time_ = finish.time;
 }
 
 }  // namespace springlab

@@ -78,15 +78,18 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   const SceneParameters& p = scene_.parameters;
   const Particles& particles = scene_.particles;
   const bool pushing = time() < p.push_duration && !pushed_.empty();
-  const bool fast = fast_forces() && !force_watch_;  // a replay watches the plain path's stages
-  if (fast) {
-    // Springs, gravity, masses and pins in one pass per thread; the wind and the push after.
+  if (fast_forces() && !force_watch_) {  // a replay watches the plain path's stages
+    // Springs, gravity, wind, masses and pins in one pass per thread; a push after.
     GridFinish finish;
     if (p.gravity.enabled) {
       finish.gravity = &p.gravity.acceleration;
       finish.mass = &particles.mass;
     }
-    if (!wind_ && !pushing) {
+    if (wind_) {  // sampled at the step's start time, as below
+      finish.wind = &*wind_;
+      finish.time = time();
+    }
+    if (!pushing) {
       finish.inverse_mass = &inverse_mass_;
       finish.acceleration = &acceleration_;
       if (any_pinned_) finish.pinned = &particles.pinned;
@@ -97,15 +100,15 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
     force_.setZero(2, r.cols());
     impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
     if (force_watch_) force_watch_(0, r, v, force_);
-  }
-  if (p.gravity.enabled && !fast) {
-    impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
-    if (force_watch_) force_watch_(1, r, v, force_);
-  }
-  // The wind is sampled at the start of the step: its gusts change over seconds, not steps.
-  if (wind_) {
-    wind_->begin_pass();
-    impl_->add_wind(*wind_, time(), r, v, force_);
+    if (p.gravity.enabled) {
+      impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
+      if (force_watch_) force_watch_(1, r, v, force_);
+    }
+    // The wind is sampled at the start of the step: its gusts change over seconds, not steps.
+    if (wind_) {
+      wind_->begin_pass();
+      impl_->add_wind(*wind_, time(), r, v, force_);
+    }
   }
   if (pushing)
     for (int i : pushed_)

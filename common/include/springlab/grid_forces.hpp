@@ -13,17 +13,21 @@
 #pragma once
 
 #include "springlab/types.hpp"
+#include "springlab/wind.hpp"
 
+#include <limits>
 #include <optional>
 #include <vector>
 
 namespace springlab {
 
 /// What the fast path does after the springs, each thread on its own rows (the model of
-/// Simulation::acceleration when the scene has neither wind nor push).
+/// Simulation::acceleration when no push acts).
 struct GridFinish {
   const Vec2* gravity = nullptr;                  ///< g, m/s²: adds m_i g (5.2) when set
   const Eigen::VectorXd* mass = nullptr;          ///< m_i, kg (needed with gravity)
+  const WindField* wind = nullptr;                ///< adds c (w(t, r_i) − v_i) (5.3) when set
+  double time = 0.0;                              ///< t, s: the wind's time
   const Eigen::VectorXd* inverse_mass = nullptr;  ///< 1/m_i: then acceleration = F_i / m_i
   const std::vector<bool>* pinned = nullptr;      ///< pinned particles get zero acceleration
   Vectors* acceleration = nullptr;                ///< m/s², resized (with inverse_mass)
@@ -59,12 +63,17 @@ class GridForces {
  private:
   GridForces(std::vector<Link> links, int rows, int cols);
   void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
-                    const GridFinish& finish, double* buffer) const;
-  void finish_row(int row, Vectors& force, const GridFinish& finish) const;
+                    const GridFinish& finish, double* buffer);
+  void finish_row(int row, const Vectors& r, const Vectors& v, Vectors& force,
+                  const GridFinish& finish);
 
   std::vector<Link> links_;
   int rows_ = 0, cols_ = 0, deepest_ = 0;  // deepest_: the largest di
   std::vector<double> buffers_;            // 2·cols per thread: one row of a link's forces
+  // The wind at each particle for wind_time_ and the position it was computed at: Verlet's
+  // iterations ask again at the same t and r, and get it without the three sines.
+  Vectors wind_position_, wind_velocity_;
+  double wind_time_ = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace springlab

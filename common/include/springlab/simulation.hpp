@@ -67,7 +67,7 @@ class Simulation {
   /// (impl.add_gravity), wind at the step's start time (impl.add_wind), the push; then
   /// impl.hold_pinned when any particle is pinned. A scene pays only for what it enables.
   /// With the kit's own model (is_kit_model(impl)) on a grid of whole spring families the springs,
-  /// gravity, masses and pins take the fast path (grid_forces.hpp), equal up to rounding.
+  /// gravity, wind, masses and pins take the fast path (grid_forces.hpp), equal up to rounding.
   const Vectors& acceleration(const Vectors& r, const Vectors& v);
 
   /// Whether acceleration() takes the fast path; set_fast_forces(false) turns it off (to compare
