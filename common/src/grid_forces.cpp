@@ -1,11 +1,13 @@
 #include "springlab/grid_forces.hpp"
 
+#include "springlab/errors.hpp"
 #include "springlab/parallel.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
+#include <string>
 #include <utility>
 
 #ifdef _OPENMP
@@ -166,13 +168,19 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, Vectors
 void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
                          const GridFinish& finish) {
   const long n = long(rows_) * cols_;
+  if (r.cols() != n || v.cols() != n)
+    throw InvalidParameter(
+        "positions and velocities",
+        std::to_string(r.cols()) + " and " + std::to_string(v.cols()) + " particles",
+        std::to_string(n) + " each, the grid's particles");
   force.resize(2, n);
   if (finish.inverse_mass) finish.acceleration->resize(2, n);
   const int threads = n >= parallel_particles ? std::min(thread_count(), rows_) : 1;
   // Sized here, before any thread starts: a thread that allocated would get its own malloc
   // arena, 64 MiB of address space that a memory limit (ulimit -v) would have to hold.
   buffers_.resize(std::size_t(threads) * 2 * cols_);
-  if (finish.wind && wind_position_.cols() != n) {
+  if (finish.wind && (wind_position_.cols() != n || finish.wind != wind_field_)) {
+    wind_field_ = finish.wind;
     wind_position_.resize(2, n);
     wind_velocity_.resize(2, n);
     wind_time_ = std::numeric_limits<double>::quiet_NaN();

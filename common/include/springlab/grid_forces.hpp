@@ -41,7 +41,8 @@ class GridForces {
   static std::optional<GridForces> of(const std::vector<Spring>& springs, int rows, int cols);
 
   /// force = every spring's and damper's force on each particle, N (resized to 2 × rows·cols);
-  /// then `finish`. Uses thread_count() threads from `parallel_particles` particles up.
+  /// then `finish`. Uses thread_count() threads from `parallel_particles` particles up. Throws
+  /// InvalidParameter when r or v do not hold rows·cols particles.
   void compute(const Vectors& r, const Vectors& v, Vectors& force, const GridFinish& finish = {});
 
   /// Below this many particles one thread is faster than two (a parallel region costs a few
@@ -74,6 +75,7 @@ class GridForces {
   // iterations ask again at the same t and r, and get it without the three sines.
   Vectors wind_position_, wind_velocity_;
   double wind_time_ = std::numeric_limits<double>::quiet_NaN();
+  const WindField* wind_field_ = nullptr;  // the field wind_velocity_ came from
 };
 
 }  // namespace springlab
