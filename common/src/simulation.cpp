@@ -78,21 +78,7 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   const SceneParameters& p = scene_.parameters;
   const Particles& particles = scene_.particles;
   const bool pushing = time() < p.push_duration && !pushed_.empty();
-  if (fast_forces() && force_watch_) {
-    // A replay watches each stage: the fast path's springs, then the plain path's own steps,
-    // which add in the same order with the same operations as the fast pass, so the replay
-    // follows the run it explains to the bit.
-    grid_->compute(r, v, force_);
-    force_watch_(0, r, v, force_);
-    if (p.gravity.enabled) {
-      impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
-      force_watch_(1, r, v, force_);
-    }
-    if (wind_) {
-      wind_->begin_pass();
-      impl_->add_wind(*wind_, time(), r, v, force_);
-    }
-  } else if (fast_forces()) {
+  if (fast_forces() && !force_watch_) {
     // Springs, gravity, wind, masses and pins in one pass per thread; a push after.
     GridFinish finish;
     if (p.gravity.enabled) {
@@ -111,8 +97,15 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
     grid_->compute(r, v, force_, finish);
     if (finish.acceleration) return acceleration_;
   } else {
-    force_.setZero(2, r.cols());
-    impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
+    // A replay watches each stage. Replaying a fast-path run, it takes its springs from the fast
+    // path too: the steps below add in the same order with the same operations as that path's
+    // pass, so the replay follows the run it explains to the bit.
+    if (fast_forces()) {
+      grid_->compute(r, v, force_);
+    } else {
+      force_.setZero(2, r.cols());
+      impl_->accumulate_spring_forces(scene_.springs, r, v, force_);
+    }
     if (force_watch_) force_watch_(0, r, v, force_);
     if (p.gravity.enabled) {
       impl_->add_gravity(particles.mass, p.gravity.acceleration, force_);
