@@ -45,6 +45,12 @@ std::vector<std::pair<std::string, SceneParameters>> scenes() {
   p.push_duration = 1.0;
   p.pushed = "bottom-row";
   out.emplace_back("61x59 fabric with wind and a push", p);
+  // Task 5 steps with Verlet, whose springs the fast path sums apart from the dampers; other
+  // integrators take each spring and damper together.
+  REQUIRE(p.integrator == "verlet");
+  p.integrator = "symplectic-euler";
+  p.push_duration = 0.0;
+  out.emplace_back("61x59 fabric with wind, symplectic Euler (springs and dampers together)", p);
   return out;
 }
 
@@ -127,10 +133,12 @@ TEST_CASE("Fast path: the same bits whatever the number of threads", "[fast]") {
     set_thread_count(threads);
     Simulation simulation(p, implementation());
     REQUIRE(simulation.fast_forces());
+    simulation.acceleration(state.position, Vectors(0.5 * state.velocity));
     return Vectors(simulation.acceleration(state.position, state.velocity));
   };
   const int threads_before = thread_count();
   const Vectors one = acceleration_on(1);
+  REQUIRE(p.integrator == "verlet");  // so a second call at the same r sums only the dampers
   for (const int threads : {2, 3, 7}) {
     INFO(threads << " threads");
     CHECK((acceleration_on(threads).array() == one.array()).all());
@@ -190,4 +198,98 @@ TEST_CASE("Fast path: only for whole regular families of the kit's own model", "
   CHECK_FALSE(is_kit_model(copy));
   CHECK_FALSE(Simulation(p, copy).fast_forces());
   CHECK(Simulation(p, implementation()).fast_forces());
+}
+
+// GridForces alone, on task 5's springs at 40 x 30 (split over 2 threads) with random positions
+// and velocities.
+struct GridCase {
+  SceneParameters p = [] {
+    SceneParameters task5 = task_scene(5);
+    task5.rows = 40;
+    task5.cols = 30;
+    return task5;
+  }();
+  Scene scene = build_scene(p, implementation());
+  GridForces grid = *GridForces::of(scene.springs, p.rows, p.cols);
+  Particles state = [this] {
+    Particles s = scene.particles;
+    randomise(s, 0.3 * p.spacing, 2.0, 5);
+    return s;
+  }();
+};
+
+TEST_CASE("Fast path: Verlet's iterations at the same r sum the springs once", "[fast]") {
+  const int threads_before = thread_count();
+  set_thread_count(2);
+  GridCase c;
+  const Vectors& r = c.state.position;
+  const Vectors v1 = c.state.velocity, v2 = 0.5 * c.state.velocity;
+  GridForces remembering = c.grid;
+  remembering.remember_springs(true);
+  Vectors f1, f2, fresh, together;
+  remembering.compute(r, v1, f1);
+  remembering.compute(r, v2, f2);
+  // Work counted: the second call, at the same positions, summed the dampers alone.
+  CHECK(remembering.spring_passes() == 1);
+  CHECK(remembering.damper_passes() == 2);
+  // Remembered or not, the same bits: a new GridForces sums both at v2.
+  GridForces other = c.grid;
+  other.remember_springs(true);
+  other.compute(r, v2, fresh);
+  CHECK(other.spring_passes() == 1);
+  CHECK((f2.array() == fresh.array()).all());
+  // Positions that differ in one bit are not the same: the springs are summed again.
+  Vectors moved = r;
+  moved(1, 17) = std::nextafter(moved(1, 17), 1e300);
+  remembering.compute(moved, v2, f1);
+  CHECK(remembering.spring_passes() == 2);
+  CHECK((f1.array() != f2.array()).any());
+  // Apart or together, the same forces up to the rounding of a sum taken in another order.
+  c.grid.compute(r, v2, together);
+  CHECK(c.grid.spring_passes() == 1);
+  CHECK(c.grid.damper_passes() == 0);  // summed with the springs, not apart
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double largest = together.cwiseAbs().maxCoeff();
+  CHECK((fresh - together).cwiseAbs().maxCoeff() <= 64 * eps * largest);
+  CHECK(largest > 0.0);
+  set_thread_count(threads_before);
+}
+
+TEST_CASE("Fast path: the springs' energy equals the plain sum up to rounding", "[fast]") {
+  GridCase c;
+  const double plain = spring_energy(c.scene.springs, c.state.position);
+  const double fast = c.grid.spring_energy(c.state.position);
+  REQUIRE(plain > 0.0);
+  // Sums of the same positive terms in another order: within (terms · ε) of each other.
+  const double eps = std::numeric_limits<double>::epsilon();
+  CHECK(std::abs(fast - plain) <= double(c.scene.springs.size()) * eps * plain);
+  CHECK(std::abs(fast - plain) <= 1e-12 * plain);
+  // A Simulation on the fast path reports it in its diagnostics.
+  Simulation simulation(c.p, implementation());
+  REQUIRE(simulation.fast_forces());
+  CHECK(simulation.diagnostics().potential ==
+        c.grid.spring_energy(simulation.particles().position));
+}
+
+TEST_CASE("Fast path: the vectorised wind equals w(t, r) to a few units in the last place",
+          "[fast]") {
+  GridCase c;
+  REQUIRE(c.p.wind.enabled);
+  c.p.wind.gustiness = 0.9;  // the sines matter
+  const WindField wind(c.p.wind);
+  const Vectors& r = c.state.position;
+  Vectors w(2, r.cols());
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (const double t : {0.0, 1.37, 250.5}) {
+    INFO("t = " << t);
+    wind.velocities(t, r.data(), int(r.cols()), w.data());
+    double largest_gap = 0.0;
+    for (Eigen::Index i = 0; i < r.cols(); ++i)
+      largest_gap = std::max(largest_gap, (w.col(i) - wind.velocity(t, r.col(i))).norm());
+    // libmvec's sines are within 4 ulp; each of three is scaled by its amplitude (< 1), the
+    // gustiness and the speed: 16 ε · speed · (1 + gustiness) is well above that, far below a
+    // mistake in the formula.
+    CHECK(largest_gap <= 16 * eps * c.p.wind.speed * (1.0 + c.p.wind.gustiness));
+    CHECK(w.cwiseAbs().maxCoeff() > 0.0);
+  }
 }

@@ -52,15 +52,24 @@ double gravitational_energy(const Eigen::VectorXd& mass, const Vectors& r, const
 
 Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs, const Vec2& g,
                      const Vectors& start) {
-  Diagnostics d = diagnose(particles, springs);
+  return diagnose(particles, spring_energy(springs, particles.position), g, start);
+}
+
+Diagnostics diagnose(const Particles& particles, double spring_energy, const Vec2& g,
+                     const Vectors& start) {
+  Diagnostics d = diagnose(particles, spring_energy);
   d.gravitational = gravitational_energy(particles.mass, particles.position, start, g);
   return d;
 }
 
 Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs) {
+  return diagnose(particles, spring_energy(springs, particles.position));
+}
+
+Diagnostics diagnose(const Particles& particles, double spring_energy) {
   Diagnostics d;
   d.kinetic = kinetic_energy(particles.mass, particles.velocity);
-  d.potential = spring_energy(springs, particles.position);
+  d.potential = spring_energy;
   d.momentum = linear_momentum(particles.mass, particles.velocity);
   d.angular_momentum = angular_momentum(particles.mass, particles.position, particles.velocity);
   return d;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <string>
 #include <utility>
@@ -19,9 +20,17 @@ namespace {
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
+// s = k (L − ℓ0) / L of a spring whose second end is (dx, dy) from its first. At zero length
+// there is no direction to push along: like (1.1) in the solutions, no force. Dividing by infinity
+// instead of 0 gives that without a branch.
+inline double spring_scale(double k, double rest_length, double dx, double dy) {
+  const double length = std::sqrt(dx * dx + dy * dy);
+  return k * (length - rest_length) / (length > 0.0 ? length : infinity);
+}
+
 // The forces on the first ends of `count` springs of one row of a link: spring j joins the
-// particle p = first + j to q = p + offset. Written as s (r_q − r_p) + b (v_q − v_p) with
-// s = k (L − ℓ0) / L, which is (1.1) + (1.2) for particle p; q receives the opposite (2.4).
+// particle p = first + j to q = p + offset. Written as s (r_q − r_p) + b (v_q − v_p), which is
+// (1.1) + (1.2) for particle p; q receives the opposite (2.4).
 // Restrict pointers and plain arrays: what GCC needs to vectorise the loop; a clone for AVX2
 // (four doubles a vector, chosen at load time on processors that have it) beside the SSE2 one.
 // Neither contracts to fused multiply-adds, so both give the same bits.
@@ -35,12 +44,56 @@ __attribute__((target_clones("avx2", "default"))) void link_row(
   for (int j = 0; j < count; ++j) {
     const double dx = rq[2 * j] - rp[2 * j];
     const double dy = rq[2 * j + 1] - rp[2 * j + 1];
-    const double length = std::sqrt(dx * dx + dy * dy);
-    // At zero length there is no direction to push along: like (1.1) in the solutions, no
-    // force. Dividing by infinity instead of 0 gives that without a branch.
-    const double s = k * (length - rest_length) / (length > 0.0 ? length : infinity);
+    const double s = spring_scale(k, rest_length, dx, dy);
     f[2 * j] = s * dx + b * (vq[2 * j] - vp[2 * j]);
     f[2 * j + 1] = s * dy + b * (vq[2 * j + 1] - vp[2 * j + 1]);
+  }
+}
+
+// link_row's two parts apart: the springs' s (r_q − r_p) in f, the dampers' b (v_q − v_p) in d.
+__attribute__((target_clones("avx2", "default"))) void link_row_apart(
+    double k, double b, double rest_length, const double* __restrict r, const double* __restrict v,
+    long first, long offset, int count, double* __restrict f, double* __restrict d) {
+  const double* rp = r + 2 * first;
+  const double* rq = rp + 2 * offset;
+  const double* vp = v + 2 * first;
+  const double* vq = vp + 2 * offset;
+  for (int j = 0; j < count; ++j) {
+    const double dx = rq[2 * j] - rp[2 * j];
+    const double dy = rq[2 * j + 1] - rp[2 * j + 1];
+    const double s = spring_scale(k, rest_length, dx, dy);
+    f[2 * j] = s * dx;
+    f[2 * j + 1] = s * dy;
+    d[2 * j] = b * (vq[2 * j] - vp[2 * j]);
+    d[2 * j + 1] = b * (vq[2 * j + 1] - vp[2 * j + 1]);
+  }
+}
+
+// The dampers alone, as in link_row_apart.
+__attribute__((target_clones("avx2", "default"))) void damper_row(double b,
+                                                                  const double* __restrict v,
+                                                                  long first, long offset,
+                                                                  int count, double* __restrict d) {
+  const double* vp = v + 2 * first;
+  const double* vq = vp + 2 * offset;
+  for (int e = 0; e < 2 * count; ++e)
+    d[e] = b * (vq[e] - vp[e]);
+}
+
+// The energies ½ k (L − ℓ0)² (whose negative gradient is (1.1)) of `count` springs of one row of a
+// link, as link_row.
+__attribute__((target_clones("avx2", "default"))) void link_energy_row(double k, double rest_length,
+                                                                       const double* __restrict r,
+                                                                       long first, long offset,
+                                                                       int count,
+                                                                       double* __restrict e) {
+  const double* rp = r + 2 * first;
+  const double* rq = rp + 2 * offset;
+  for (int j = 0; j < count; ++j) {
+    const double dx = rq[2 * j] - rp[2 * j];
+    const double dy = rq[2 * j + 1] - rp[2 * j + 1];
+    const double stretch = std::sqrt(dx * dx + dy * dy) - rest_length;
+    e[j] = 0.5 * k * stretch * stretch;
   }
 }
 
@@ -52,6 +105,13 @@ void add(double* __restrict to, const double* __restrict f, int values) {
 void subtract(double* __restrict to, const double* __restrict f, int values) {
   for (int e = 0; e < values; ++e)
     to[e] -= f[e];
+}
+
+// f += c (w − v), (5.3), over `values` entries.
+void add_drag(double c, const double* __restrict w, const double* __restrict v, int values,
+              double* __restrict f) {
+  for (int e = 0; e < values; ++e)
+    f[e] += c * (w[e] - v[e]);
 }
 
 // The rows of `rows` that thread `t` of `threads` owns: [first, end).
@@ -104,65 +164,109 @@ GridForces::GridForces(std::vector<Link> links, int rows, int cols)
     deepest_ = std::max(deepest_, link.di);
 }
 
-// Rows [first_row, end_row) of force, from every spring with an end on them. A spring with its
-// first end above first_row is computed here too (at most deepest_ rows of them) rather than
-// taken from the thread that owns that row: so each particle's sum runs over the rows above it
-// in the same order whatever the split, with no waiting between threads.
+// Rows [first_row, end_row), from every spring with an end on them. A spring with its first end
+// above first_row is computed here too (at most deepest_ rows of them) rather than taken from the
+// thread that owns that row: so each particle's sum runs over the rows above it in the same order
+// whatever the split, with no waiting between threads. The sums go to force, or, when only the
+// acceleration is wanted, to `ring`: deepest_ + 1 rows that a row leaves once it is finished, so a
+// large grid's forces never travel to memory and back. With remembered springs (pass_ apart or
+// dampers_only), the springs' sums go to spring_sums_ and only the dampers' to force or the ring.
 void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v,
-                              Vectors& force, const GridFinish& finish, double* buffer) {
-  double* out = force.data();
-  const long begin = 2L * first_row * cols_, end = 2L * end_row * cols_;
-  std::fill(out + begin, out + end, 0.0);
+                              Vectors& force, const GridFinish& finish, const Scratch& scratch) {
+  const long width = 2L * cols_;
+  const int slots = deepest_ + 1;
+  const auto sums = [&](int row) {
+    return scratch.ring ? scratch.ring + width * (row % slots) : force.data() + width * row;
+  };
+  if (scratch.ring)
+    std::fill(scratch.ring, scratch.ring + width * slots, 0.0);
+  else
+    std::fill(force.data() + width * first_row, force.data() + width * end_row, 0.0);
+  double* springs = spring_sums_.data();
+  if (pass_ == Pass::apart) std::fill(springs + width * first_row, springs + width * end_row, 0.0);
+  // Adds a row of first ends' forces to the rows this thread owns: +f on p, −f on q (2.4).
+  const auto scatter = [&](const double* f, double* p, double* q, int values) {
+    if (p) add(p, f, values);
+    if (q) subtract(q, f, values);
+  };
   for (int row = std::max(0, first_row - deepest_); row < end_row; ++row) {
     for (const Link& link : links_) {
       const int q_row = row + link.di;
       const bool own_p = row >= first_row, own_q = q_row >= first_row && q_row < end_row;
       if (q_row >= rows_ || !(own_p || own_q)) continue;
       const int count = cols_ - std::abs(link.dj);
-      const long first = long(row) * cols_ + std::max(0, -link.dj);
-      const long offset = long(link.di) * cols_ + link.dj;
-      link_row(link.k, link.b, link.rest_length, r.data(), v.data(), first, offset, count, buffer);
-      if (own_p) add(out + 2 * first, buffer, 2 * count);
-      if (own_q) subtract(out + 2 * (first + offset), buffer, 2 * count);
+      const int p_col = std::max(0, -link.dj), q_col = p_col + link.dj;
+      const long first = long(row) * cols_ + p_col, offset = long(link.di) * cols_ + link.dj;
+      double* p_sums = own_p ? sums(row) + 2 * p_col : nullptr;
+      double* q_sums = own_q ? sums(q_row) + 2 * q_col : nullptr;
+      switch (pass_) {
+        case Pass::together:
+          link_row(link.k, link.b, link.rest_length, r.data(), v.data(), first, offset, count,
+                   scratch.springs);
+          scatter(scratch.springs, p_sums, q_sums, 2 * count);
+          break;
+        case Pass::apart:
+          link_row_apart(link.k, link.b, link.rest_length, r.data(), v.data(), first, offset, count,
+                         scratch.springs, scratch.dampers);
+          scatter(scratch.springs, own_p ? springs + 2 * first : nullptr,
+                  own_q ? springs + 2 * (first + offset) : nullptr, 2 * count);
+          scatter(scratch.dampers, p_sums, q_sums, 2 * count);
+          break;
+        case Pass::dampers_only:
+          damper_row(link.b, v.data(), first, offset, count, scratch.dampers);
+          scatter(scratch.dampers, p_sums, q_sums, 2 * count);
+          break;
+      }
     }
     // No later row has a spring ending on this one: finish it while it is in the cache.
-    if (row >= first_row) finish_row(row, r, v, force, finish);
+    if (row >= first_row) {
+      double* f = sums(row);
+      if (pass_ != Pass::together) {
+        const double* s = springs + width * row;
+        for (long e = 0; e < width; ++e)
+          f[e] = s[e] + f[e];
+      }
+      finish_row(row, r, v, f, finish);
+      if (scratch.ring) std::fill(f, f + width, 0.0);  // for row + slots
+    }
   }
 }
 
-// Each thread writes only its own rows of force, the acceleration and the wind's memory.
-void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, Vectors& force,
+// Each thread writes only its own rows of the acceleration and the wind's memory. f: the row's
+// forces, x and y of each particle in turn.
+void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double* __restrict f,
                             const GridFinish& finish) {
-  const int begin = row * cols_, end = begin + cols_;
-  double* f = force.data();
+  const long begin = long(row) * cols_;
+  const int width = 2 * cols_;
   if (finish.gravity) {
     const double gx = finish.gravity->x(), gy = finish.gravity->y();
-    const double* m = finish.mass->data();
-    for (int i = begin; i < end; ++i) {
-      f[2 * i] += m[i] * gx;  // (5.2)
-      f[2 * i + 1] += m[i] * gy;
+    const double* m = finish.mass->data() + begin;
+    for (int j = 0; j < cols_; ++j) {
+      f[2 * j] += m[j] * gx;  // (5.2)
+      f[2 * j + 1] += m[j] * gy;
     }
   }
   if (finish.wind) {
-    const bool same_time = finish.time == wind_time_;
-    for (int i = begin; i < end; ++i) {
-      if (!same_time || wind_position_.col(i) != r.col(i)) {
-        wind_position_.col(i) = r.col(i);
-        wind_velocity_.col(i) = finish.wind->velocity_at(finish.time, r.col(i));
-      }
-      force.col(i) += finish.wind->drag() * (wind_velocity_.col(i) - v.col(i));  // (5.3)
+    const double* rr = r.data() + 2 * begin;
+    double* remembered = wind_position_.data() + 2 * begin;
+    double* w = wind_velocity_.data() + 2 * begin;
+    if (finish.time != wind_time_ ||
+        std::memcmp(remembered, rr, sizeof(double) * std::size_t(width)) != 0) {
+      std::copy(rr, rr + width, remembered);
+      finish.wind->velocities(finish.time, rr, cols_, w);
     }
+    add_drag(finish.wind->drag(), w, v.data() + 2 * begin, width, f);
   }
   if (!finish.inverse_mass) return;
-  double* a = finish.acceleration->data();
-  const double* inverse_mass = finish.inverse_mass->data();
-  for (int i = begin; i < end; ++i) {
-    a[2 * i] = f[2 * i] * inverse_mass[i];
-    a[2 * i + 1] = f[2 * i + 1] * inverse_mass[i];
+  double* __restrict a = finish.acceleration->data() + 2 * begin;
+  const double* inverse_mass = finish.inverse_mass->data() + begin;
+  for (int j = 0; j < cols_; ++j) {
+    a[2 * j] = f[2 * j] * inverse_mass[j];
+    a[2 * j + 1] = f[2 * j + 1] * inverse_mass[j];
   }
   if (finish.pinned)
-    for (int i = begin; i < end; ++i)
-      if ((*finish.pinned)[i]) a[2 * i] = a[2 * i + 1] = 0.0;
+    for (int j = 0; j < cols_; ++j)
+      if ((*finish.pinned)[std::size_t(begin + j)]) a[2 * j] = a[2 * j + 1] = 0.0;
 }
 
 void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
@@ -173,12 +277,29 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
         "positions and velocities",
         std::to_string(r.cols()) + " and " + std::to_string(v.cols()) + " particles",
         std::to_string(n) + " each, the grid's particles");
-  force.resize(2, n);
-  if (finish.inverse_mass) finish.acceleration->resize(2, n);
+  if (finish.inverse_mass)
+    finish.acceleration->resize(2, n);
+  else
+    force.resize(2, n);
   const int threads = n >= parallel_particles ? std::min(thread_count(), rows_) : 1;
   // Sized here, before any thread starts: a thread that allocated would get its own malloc
   // arena, 64 MiB of address space that a memory limit (ulimit -v) would have to hold.
-  buffers_.resize(std::size_t(threads) * 2 * cols_);
+  pass_ = Pass::together;
+  if (remember_springs_) {
+    const bool same = springs_position_.cols() == n &&
+                      std::memcmp(springs_position_.data(), r.data(), sizeof(double) * 2 * n) == 0;
+    if (!same) {
+      springs_position_ = r;
+      spring_sums_.resize(2, n);
+    }
+    pass_ = same ? Pass::dampers_only : Pass::apart;
+    ++damper_passes_;
+  }
+  if (pass_ != Pass::dampers_only) ++spring_passes_;
+  const std::size_t row = 2 * std::size_t(cols_);
+  const std::size_t ring = finish.inverse_mass ? row * std::size_t(deepest_ + 1) : 0;
+  const std::size_t each = 2 * row + ring;  // a thread's springs, dampers and ring
+  buffers_.resize(std::size_t(threads) * each);
   if (finish.wind && (wind_position_.cols() != n || finish.wind != wind_field_)) {
     wind_field_ = finish.wind;
     wind_position_.resize(2, n);
@@ -194,10 +315,35 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     const int t = 0, granted = 1;
 #endif
     const auto [first_row, end_row] = rows_of(t, granted, rows_);
+    double* mine = buffers_.data() + std::size_t(t) * each;
     compute_rows(first_row, end_row, r, v, force, finish,
-                 buffers_.data() + std::size_t(t) * 2 * cols_);
+                 {mine, mine + row, ring > 0 ? mine + 2 * row : nullptr});
   }
   if (finish.wind) wind_time_ = finish.time;
+}
+
+void GridForces::add_wind(const WindField& wind, double t, const Vectors& r, const Vectors& v,
+                          Vectors& force) const {
+  std::vector<double> w(2 * std::size_t(cols_));
+  for (int row = 0; row < rows_; ++row) {
+    const long begin = 2L * row * cols_;
+    wind.velocities(t, r.data() + begin, cols_, w.data());
+    add_drag(wind.drag(), w.data(), v.data() + begin, 2 * cols_, force.data() + begin);
+  }
+}
+
+double GridForces::spring_energy(const Vectors& r) const {
+  std::vector<double> energies(static_cast<std::size_t>(cols_));
+  double total = 0.0;
+  for (int row = 0; row < rows_; ++row)
+    for (const Link& link : links_) {
+      if (row + link.di >= rows_) continue;
+      const int count = cols_ - std::abs(link.dj);
+      link_energy_row(link.k, link.rest_length, r.data(), long(row) * cols_ + std::max(0, -link.dj),
+                      long(link.di) * cols_ + link.dj, count, energies.data());
+      total += Eigen::Map<const Eigen::VectorXd>(energies.data(), count).sum();
+    }
+  return total;
 }
 
 }  // namespace springlab

@@ -69,6 +69,8 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
                       external_energy(particles, p, int(pushed_.size()));
   if (is_kit_model(impl) && particles.size() == p.rows * p.cols)
     grid_ = GridForces::of(scene_.springs, p.rows, p.cols);
+  // Verlet's iterations ask for a(r, v) again at the same r with a new v.
+  if (grid_) grid_->remember_springs(p.integrator == "verlet");
   restart_stretch();
   check_divergence(true);
 }
@@ -112,7 +114,9 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
       if (force_watch_) force_watch_(1, r, v, force_);
     }
     // The wind is sampled at the start of the step: its gusts change over seconds, not steps.
-    if (wind_) {
+    if (wind_ && fast_forces()) {
+      grid_->add_wind(*wind_, time(), r, v, force_);
+    } else if (wind_) {
       wind_->begin_pass();
       impl_->add_wind(*wind_, time(), r, v, force_);
     }
@@ -128,6 +132,9 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
 Diagnostics Simulation::diagnostics() const {
   const SceneParameters& p = scene_.parameters;
   const Vec2 g = p.gravity.enabled ? p.gravity.acceleration : Vec2::Zero();
+  if (fast_forces())
+    return diagnose(scene_.particles, grid_->spring_energy(scene_.particles.position), g,
+                    start_position_);
   return diagnose(scene_.particles, scene_.springs, g, start_position_);
 }
 

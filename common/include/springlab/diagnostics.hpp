@@ -51,4 +51,10 @@ Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& spri
 Diagnostics diagnose(const Particles& particles, const std::vector<Spring>& springs, const Vec2& g,
                      const Vectors& start);
 
+/// The same two with the springs' energy (J) already summed, e.g. by the fast path
+/// (grid_forces.hpp).
+Diagnostics diagnose(const Particles& particles, double spring_energy);
+Diagnostics diagnose(const Particles& particles, double spring_energy, const Vec2& g,
+                     const Vectors& start);
+
 }  // namespace springlab

@@ -41,9 +41,34 @@ class GridForces {
   static std::optional<GridForces> of(const std::vector<Spring>& springs, int rows, int cols);
 
   /// force = every spring's and damper's force on each particle, N (resized to 2 × rows·cols);
-  /// then `finish`. Uses thread_count() threads from `parallel_particles` particles up. Throws
-  /// InvalidParameter when r or v do not hold rows·cols particles.
+  /// then `finish`. With finish.inverse_mass, only the acceleration is written, not force. Uses
+  /// thread_count() threads from `parallel_particles` particles up. Throws InvalidParameter when r
+  /// or v do not hold rows·cols particles.
   void compute(const Vectors& r, const Vectors& v, Vectors& force, const GridFinish& finish = {});
+
+  /// force += c (w(t, r_i) − v_i), (5.3), with the wind the fast path's finish computes: the same
+  /// bits (WindField::velocities, row by row), for a replay that watches a fast-path run.
+  void add_wind(const WindField& wind, double t, const Vectors& r, const Vectors& v,
+                Vectors& force) const;
+
+  /// For an integrator that asks again at the same positions (Verlet's velocity iterations): the
+  /// springs' forces, which depend on r alone, are then summed apart from the dampers' and
+  /// remembered, and a call at the same r (to the bit) sums only the dampers. The result is the
+  /// same to the bit whether the springs were remembered or not; it differs from the default
+  /// (each spring's and damper's force added together) by rounding.
+  void remember_springs(bool on) {
+    remember_springs_ = on;
+    springs_position_.resize(2, 0);
+  }
+
+  /// Work done so far: passes over the springs' forces (with or without the dampers'), and
+  /// passes over the dampers' alone or apart from the springs'.
+  long spring_passes() const { return spring_passes_; }
+  long damper_passes() const { return damper_passes_; }
+
+  /// Σ ½ k (L − ℓ0)² over every spring, J: spring_energy (diagnostics.hpp) up to rounding, summed
+  /// link row by link row, vectorised, in one thread (the viewer's plots ask for it every frame).
+  double spring_energy(const Vectors& r) const;
 
   /// Below this many particles one thread is faster than two (a parallel region costs a few
   /// microseconds; a 50 × 50 fabric's forces about 40).
@@ -63,14 +88,24 @@ class GridForces {
 
  private:
   GridForces(std::vector<Link> links, int rows, int cols);
+  struct Scratch {  // a thread's: one row of a link's spring and damper forces, the ring
+    double *springs, *dampers, *ring;
+  };
+  enum class Pass { together, apart, dampers_only };
   void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
-                    const GridFinish& finish, double* buffer);
-  void finish_row(int row, const Vectors& r, const Vectors& v, Vectors& force,
-                  const GridFinish& finish);
+                    const GridFinish& finish, const Scratch& scratch);
+  void finish_row(int row, const Vectors& r, const Vectors& v, double* f, const GridFinish& finish);
 
   std::vector<Link> links_;
   int rows_ = 0, cols_ = 0, deepest_ = 0;  // deepest_: the largest di
-  std::vector<double> buffers_;            // 2·cols per thread: one row of a link's forces
+  // Per thread: a row of a link's spring forces and one of its damper forces (2·cols each), then,
+  // when only the acceleration is wanted, the deepest_ + 1 rows of sums still open.
+  std::vector<double> buffers_;
+  // remember_springs: the springs' sums and the positions they were computed at.
+  bool remember_springs_ = false;
+  Pass pass_ = Pass::together;
+  Vectors springs_position_, spring_sums_;
+  long spring_passes_ = 0, damper_passes_ = 0;
   // The wind at each particle for wind_time_ and the position it was computed at: Verlet's
   // iterations ask again at the same t and r, and get it without the three sines.
   Vectors wind_position_, wind_velocity_;

@@ -20,8 +20,10 @@ class WindField {
   /// w(t, r) = speed · (1 + gustiness · γ(t − (r·d)/speed)) · d, m/s, equation (5.4), where d is
   /// the unit direction and γ ∈ [−1, 1] a sum of three sines with periods near gust_period.
   Vec2 velocity(double t, const Vec2& r) const;
-  /// The same w(t, r), always computed, never remembered: safe to call from several threads.
-  Vec2 velocity_at(double t, const Vec2& r) const { return compute(t, r); }
+  /// w(t, r_j) for `count` particles (x and y of each in turn, in r and in w), always computed,
+  /// never remembered, so safe to call from several threads. Vectorised: it agrees with
+  /// velocity() to a few units in the last place of the gusts, not to the bit.
+  void velocities(double t, const double* r, int count, double* w) const;
 
   double drag() const { return drag_; }  ///< c, N·s/m
 
