@@ -6,7 +6,8 @@
 
 namespace springlab::view {
 
-void plot(const char* id, const char* unit, std::initializer_list<Series> series, float height) {
+WidgetRect plot(const char* id, const char* unit, std::initializer_list<Series> series,
+                float height) {
   float low = 0.0f, high = 0.0f;  // zero stays in view: an energy is read against it
   std::size_t samples = 0;
   for (const Series& s : series) {
@@ -21,7 +22,6 @@ void plot(const char* id, const char* unit, std::initializer_list<Series> series
   ImGui::InvisibleButton("plot", ImVec2(width, height));
   ImDrawList* draw = ImGui::GetWindowDrawList();
   const ImVec2 far(corner.x + width, corner.y + height);
-  draw->AddRectFilled(corner, far, IM_COL32(16, 18, 24, 255));
   const float zero_y = corner.y + height * (high / (high - low));
   draw->AddLine(ImVec2(corner.x, zero_y), ImVec2(far.x, zero_y), IM_COL32(80, 80, 90, 255));
   for (const Series& s : series) {
@@ -47,6 +47,7 @@ void plot(const char* id, const char* unit, std::initializer_list<Series> series
   }
   ImGui::NewLine();
   ImGui::PopID();
+  return {corner.x, corner.y, far.x, far.y};
 }
 
 }  // namespace springlab::view

@@ -58,7 +58,7 @@ struct DrawCounts {
 /// Spacing on screen (pixels) below which a grid is drawn as a surface rather than as springs.
 inline constexpr double surface_below_pixels = 4.0;
 /// The smallest cell the surface is drawn with, pixels: finer cells are merged (surface_stride).
-inline constexpr double surface_cell_pixels = 4.0;
+inline constexpr double surface_cell_pixels = 8.0;
 
 /// The particles' radius on screen, pixels.
 float particle_radius(const Camera& camera, double spacing);

@@ -154,6 +154,7 @@ std::unique_ptr<Simulation> Session::make(const Implementation& impl,
 }
 
 void Session::rebuild(bool keep_state) {
+  ++builds_;
   // Carry the motion over only from a healthy run of the same particles.
   const bool keep = keep_state && primary_ && problem_.kind == Problem::Kind::none &&
                     primary_->parameters().rows == parameters_.rows &&

@@ -110,6 +110,8 @@ class Session {
   /// Counts the rebuilds that started the scene afresh (new scene, reset, new grid): the view
   /// fits itself to each.
   int fresh_starts() const { return fresh_starts_; }
+  /// Counts every rebuild of the simulations, fresh or carrying the motion over.
+  int builds() const { return builds_; }
   double time() const;  ///< s since the last reset
   const History& history() const { return history_; }
   /// The largest distance between a particle of the student's run and the same particle of the
@@ -154,7 +156,7 @@ class Session {
   History history_;
   std::set<int> toggled_pins_;  // pins the user changed, kept across rebuilds
   int grabbed_ = -1;
-  int fresh_starts_ = 0;
+  int fresh_starts_ = 0, builds_ = 0;
   bool grabbed_was_pinned_ = false;
   std::string critical_key_, critical_note_;
   std::optional<double> critical_;
