@@ -293,3 +293,31 @@ TEST_CASE("Fast path: the vectorised wind equals w(t, r) to a few units in the l
     CHECK(w.cwiseAbs().maxCoeff() > 0.0);
   }
 }
+
+TEST_CASE("Two threads: the kit's integrators step the same bits on 1, 2 and 3 threads", "[fast]") {
+  REQUIRE(parallel_built());
+  SceneParameters p = task_scene(5);
+  p.rows = 130;  // 16,900 particles: above parallel_items, so the vector work is split too
+  p.cols = 130;
+  REQUIRE(long(p.rows) * p.cols >= parallel_items);
+  const int threads_before = thread_count();
+  for (const char* integrator : {"symplectic-euler", "rk4", "velocity-verlet", "verlet"}) {
+    INFO(integrator);
+    p.integrator = integrator;
+    const auto run_on = [&](int threads) {
+      set_thread_count(threads);
+      Simulation simulation(p, implementation());
+      simulation.advance(3);
+      return simulation.particles();
+    };
+    const Particles one = run_on(1);
+    for (const int threads : {2, 3}) {
+      INFO(threads << " threads");
+      const Particles many = run_on(threads);
+      CHECK((many.position.array() == one.position.array()).all());
+      CHECK((many.velocity.array() == one.velocity.array()).all());
+    }
+    CHECK(one.velocity.cwiseAbs().maxCoeff() > 0.0);  // it moved
+  }
+  set_thread_count(threads_before);
+}

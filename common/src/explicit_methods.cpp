@@ -30,20 +30,43 @@ class RungeKutta4 final : public Integrator {
   std::string_view name() const override { return "rk4"; }
   void step(const Model& model, double h, Vectors& r, Vectors& v) override {
     const auto& a = model.acceleration;
+    const long n = r.cols();
+    for (Vectors* storage : {&k1v_, &k2r_, &k2v_, &k3r_, &k3v_, &k4r_, &k4v_, &stage_r_})
+      storage->resize(2, n);  // before any thread writes its block
     // Each stage's position goes into stage_r_, storage kept between steps: an argument such
-    // as r + 0.5 h v would be a new matrix, allocated and freed at every stage.
-    k1v_ = a(r, v);
-    k2r_ = v + 0.5 * h * k1v_;
-    stage_r_ = r + 0.5 * h * v;
-    k2v_ = a(stage_r_, k2r_);
-    k3r_ = v + 0.5 * h * k2v_;
-    stage_r_ = r + 0.5 * h * k2r_;
-    k3v_ = a(stage_r_, k3r_);
-    k4r_ = v + h * k3v_;
-    stage_r_ = r + h * k3r_;
-    k4v_ = a(stage_r_, k4r_);
-    r += h / 6.0 * (v + 2.0 * k2r_ + 2.0 * k3r_ + k4r_);
-    v += h / 6.0 * (k1v_ + 2.0 * k2v_ + 2.0 * k3v_ + k4v_);
+    // as r + 0.5 h v would be a new matrix, allocated and freed at every stage. Every update is
+    // element-wise, so it is split over threads on large scenes with the same result.
+    const auto cols = [](auto& m, long begin, long end) {
+      return m.middleCols(begin, end - begin);
+    };
+    const Vectors& a1 = a(r, v);
+    for_blocks(n, [&](long b, long e) {
+      cols(k1v_, b, e) = cols(a1, b, e);
+      cols(k2r_, b, e) = cols(v, b, e) + 0.5 * h * cols(k1v_, b, e);
+      cols(stage_r_, b, e) = cols(r, b, e) + 0.5 * h * cols(v, b, e);
+    });
+    const Vectors& a2 = a(stage_r_, k2r_);
+    for_blocks(n, [&](long b, long e) {
+      cols(k2v_, b, e) = cols(a2, b, e);
+      cols(k3r_, b, e) = cols(v, b, e) + 0.5 * h * cols(k2v_, b, e);
+      cols(stage_r_, b, e) = cols(r, b, e) + 0.5 * h * cols(k2r_, b, e);
+    });
+    const Vectors& a3 = a(stage_r_, k3r_);
+    for_blocks(n, [&](long b, long e) {
+      cols(k3v_, b, e) = cols(a3, b, e);
+      cols(k4r_, b, e) = cols(v, b, e) + h * cols(k3v_, b, e);
+      cols(stage_r_, b, e) = cols(r, b, e) + h * cols(k3r_, b, e);
+    });
+    const Vectors& a4 = a(stage_r_, k4r_);
+    for_blocks(n, [&](long b, long e) {
+      cols(k4v_, b, e) = cols(a4, b, e);
+      cols(r, b, e) +=
+          h / 6.0 *
+          (cols(v, b, e) + 2.0 * cols(k2r_, b, e) + 2.0 * cols(k3r_, b, e) + cols(k4r_, b, e));
+      cols(v, b, e) +=
+          h / 6.0 *
+          (cols(k1v_, b, e) + 2.0 * cols(k2v_, b, e) + 2.0 * cols(k3v_, b, e) + cols(k4v_, b, e));
+    });
   }
 
  private:
