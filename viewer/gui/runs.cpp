@@ -98,7 +98,7 @@ void phase_report(const std::vector<FramePhases>& phases, bool thread, std::ostr
   out << '\n';
 }
 
-void benchmark_report(const std::vector<double>& frames, long steps, double seconds,
+void benchmark_report(const std::vector<double>& frames, long steps, long dropped, double seconds,
                       double stepping, double simulated, bool thread, std::ostream& out) {
   char line[256];
   std::snprintf(line, sizeof line,
@@ -112,8 +112,9 @@ void benchmark_report(const std::vector<double>& frames, long steps, double seco
       seconds, double(steps) / seconds, double(frames.size()) / seconds, 100 * stepping / seconds,
       thread ? " (in its own thread)" : "");
   out << line;
-  std::snprintf(line, sizeof line, "simulated %.2f s in %.2f s of wall time (%.2f x real time)\n",
-                simulated, seconds, simulated / seconds);
+  std::snprintf(line, sizeof line,
+                "simulated %.2f s in %.2f s of wall time (%.2f x real time); %ld steps dropped\n",
+                simulated, seconds, simulated / seconds, dropped);
   out << line;
   const bool real_time = percentile(frames, 95) <= 1.0 / 60;
   out << (real_time ? "real time at 60 frames/s: yes (p95 within 16.7 ms)\n"
@@ -188,6 +189,7 @@ int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& er
   std::vector<FramePhases> phases;
   long steps = 0;
   double stepping = 0.0;
+  long dropped = 0;  // steps owed that no frame took (slower than real time)
   const auto start = std::chrono::steady_clock::now();
   auto last = start;
   bool warned_slow = false;
@@ -205,6 +207,7 @@ int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& er
     last = now;
     warn_if_too_slow(app.last_frame(), warned_slow, progress, err);
     steps += app.last_frame().steps;
+    dropped += app.last_frame().dropped_steps;
     stepping += app.last_frame().stepping_seconds;
     phases.push_back(app.last_frame().phases);
     if (progress) progress->after(frame + 1);
@@ -226,7 +229,7 @@ int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& er
     out << "frames: " << printable(frame_file(options.record, 0)) << " ... "
         << printable(frame_file(options.record, long(frame_seconds.size()) - 1)) << '\n';
   if (options.benchmark && !frame_seconds.empty()) {
-    benchmark_report(frame_seconds, steps, seconds, stepping, app.session().time(),
+    benchmark_report(frame_seconds, steps, dropped, seconds, stepping, app.session().time(),
                      app.stepping_thread(), out);
     phase_report(phases, app.stepping_thread(), out);
   }
