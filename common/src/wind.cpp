@@ -6,8 +6,11 @@
 
 // glibc's libmvec holds vector versions of sin (2 lanes for SSE2, 4 for AVX2; at most 4 ulp from
 // the exact value, where std::sin is within 1). Declaring them lets GCC vectorise the loop in
-// WindField::velocities; libm links libmvec as needed.
+// WindField::velocities; libm links libmvec as needed. (Clang has no such attribute: there the
+// loop calls std::sin one value at a time.)
+#if defined(__GNUC__) && !defined(__clang__)
 extern "C" double sin(double) __attribute__((simd("notinbranch")));
+#endif
 
 namespace springlab {
 
