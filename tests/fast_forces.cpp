@@ -321,3 +321,27 @@ TEST_CASE("Two threads: the kit's integrators step the same bits on 1, 2 and 3 t
   }
   set_thread_count(threads_before);
 }
+
+TEST_CASE("Fast path: particles of different masses take the per-particle arrays", "[fast]") {
+  SceneParameters p = task_scene(5);
+  p.rows = 9;
+  p.cols = 8;
+  Scene scene = build_scene(p, implementation());
+  randomise(scene.particles, 0.3 * p.spacing, 2.0, 3);
+  scene.particles.mass[10] *= 3.0;  // no longer one mass for all: gravity and 1/m per particle
+  Simulation simulation(std::move(scene), implementation());
+  REQUIRE(simulation.fast_forces());
+  const Particles& state = simulation.particles();
+  const Vectors fast = simulation.acceleration(state.position, state.velocity);
+  simulation.set_fast_forces(false);
+  const Vectors plain = simulation.acceleration(state.position, state.velocity);
+  const Eigen::VectorXd scale = force_scale(simulation);
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (int i = 0; i < state.size(); ++i) {
+    INFO("particle " << i);
+    CHECK((fast.col(i) - plain.col(i)).norm() <= 16 * eps * scale[i] / state.mass[i]);
+  }
+  // The heavier particle falls with g all the same: its own mass is used for both m g and 1/m.
+  CHECK(std::abs(fast(1, 10) - plain(1, 10)) <= 1e-12);
+  CHECK(plain.col(10).norm() > 0.0);
+}

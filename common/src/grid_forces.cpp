@@ -50,6 +50,29 @@ __attribute__((target_clones("avx2", "default"))) void link_row(
   }
 }
 
+// link_row with its forces added straight to p's sums and taken from q's (2.4), for links to
+// another row (di > 0), whose two runs of sums never overlap: the same additions in the same
+// order as link_row followed by add and subtract, without the round trip through a buffer.
+__attribute__((target_clones("avx2", "default"))) void link_row_into(
+    double k, double b, double rest_length, const double* __restrict r, const double* __restrict v,
+    long first, long offset, int count, double* __restrict p_sums, double* __restrict q_sums) {
+  const double* rp = r + 2 * first;
+  const double* rq = rp + 2 * offset;
+  const double* vp = v + 2 * first;
+  const double* vq = vp + 2 * offset;
+  for (int j = 0; j < count; ++j) {
+    const double dx = rq[2 * j] - rp[2 * j];
+    const double dy = rq[2 * j + 1] - rp[2 * j + 1];
+    const double s = spring_scale(k, rest_length, dx, dy);
+    const double fx = s * dx + b * (vq[2 * j] - vp[2 * j]);
+    const double fy = s * dy + b * (vq[2 * j + 1] - vp[2 * j + 1]);
+    p_sums[2 * j] += fx;
+    p_sums[2 * j + 1] += fy;
+    q_sums[2 * j] -= fx;
+    q_sums[2 * j + 1] -= fy;
+  }
+}
+
 // link_row's two parts apart: the springs' s (r_q − r_p) in f, the dampers' b (v_q − v_p) in d.
 __attribute__((target_clones("avx2", "default"))) void link_row_apart(
     double k, double b, double rest_length, const double* __restrict r, const double* __restrict v,
@@ -201,6 +224,11 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
       double* q_sums = own_q ? sums(q_row) + 2 * q_col : nullptr;
       switch (pass_) {
         case Pass::together:
+          if (link.di > 0 && p_sums && q_sums) {
+            link_row_into(link.k, link.b, link.rest_length, r.data(), v.data(), first, offset,
+                          count, p_sums, q_sums);
+            break;
+          }
           link_row(link.k, link.b, link.rest_length, r.data(), v.data(), first, offset, count,
                    scratch.springs);
           scatter(scratch.springs, p_sums, q_sums, 2 * count);
@@ -238,7 +266,15 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
                             const GridFinish& finish) {
   const long begin = long(row) * cols_;
   const int width = 2 * cols_;
-  if (finish.gravity) {
+  const bool same = finish.same_mass > 0.0;
+  if (finish.gravity && same) {
+    const double fx = finish.same_mass * finish.gravity->x();  // (5.2)
+    const double fy = finish.same_mass * finish.gravity->y();
+    for (int j = 0; j < cols_; ++j) {
+      f[2 * j] += fx;
+      f[2 * j + 1] += fy;
+    }
+  } else if (finish.gravity) {
     const double gx = finish.gravity->x(), gy = finish.gravity->y();
     const double* m = finish.mass->data() + begin;
     for (int j = 0; j < cols_; ++j) {
@@ -259,10 +295,16 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
   }
   if (!finish.inverse_mass) return;
   double* __restrict a = finish.acceleration->data() + 2 * begin;
-  const double* inverse_mass = finish.inverse_mass->data() + begin;
-  for (int j = 0; j < cols_; ++j) {
-    a[2 * j] = f[2 * j] * inverse_mass[j];
-    a[2 * j + 1] = f[2 * j + 1] * inverse_mass[j];
+  if (same) {
+    const double inverse = 1.0 / finish.same_mass;
+    for (int e = 0; e < width; ++e)
+      a[e] = f[e] * inverse;
+  } else {
+    const double* inverse_mass = finish.inverse_mass->data() + begin;
+    for (int j = 0; j < cols_; ++j) {
+      a[2 * j] = f[2 * j] * inverse_mass[j];
+      a[2 * j + 1] = f[2 * j + 1] * inverse_mass[j];
+    }
   }
   if (finish.pinned)
     for (int j = 0; j < cols_; ++j)

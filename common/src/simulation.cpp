@@ -56,6 +56,8 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
   const Particles& particles = scene_.particles;
   const SceneParameters& p = scene_.parameters;
   inverse_mass_ = particles.mass.cwiseInverse();
+  if (particles.size() > 0 && particles.mass.maxCoeff() == particles.mass.minCoeff())
+    same_mass_ = particles.mass[0];
   any_pinned_ =
       std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
   start_position_ = particles.position;
@@ -91,6 +93,7 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
       finish.wind = &*wind_;
       finish.time = time();
     }
+    finish.same_mass = same_mass_;
     if (!pushing) {
       finish.inverse_mass = &inverse_mass_;
       finish.acceleration = &acceleration_;

@@ -29,8 +29,11 @@ struct GridFinish {
   const WindField* wind = nullptr;                ///< adds c (w(t, r_i) − v_i) (5.3) when set
   double time = 0.0;                              ///< t, s: the wind's time
   const Eigen::VectorXd* inverse_mass = nullptr;  ///< 1/m_i: then acceleration = F_i / m_i
-  const std::vector<bool>* pinned = nullptr;      ///< pinned particles get zero acceleration
-  Vectors* acceleration = nullptr;                ///< m/s², resized (with inverse_mass)
+  /// m, kg, when every particle's mass is m (> 0): then the two arrays above are not read (the
+  /// same bits, m and 1/m being the arrays' every entry), a large grid's 16 bytes a particle less.
+  double same_mass = 0.0;
+  const std::vector<bool>* pinned = nullptr;  ///< pinned particles get zero acceleration
+  Vectors* acceleration = nullptr;            ///< m/s², resized (with inverse_mass)
 };
 
 class GridForces {

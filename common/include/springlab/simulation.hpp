@@ -125,8 +125,9 @@ class Simulation {
   double start_time_ = 0.0;  // s
   long steps_ = 0;
   long evaluations_ = 0;
-  Eigen::VectorXd inverse_mass_;   // 1/m_i
-  bool any_pinned_ = false;        // whether hold_pinned has anything to hold (set_pinned updates)
+  Eigen::VectorXd inverse_mass_;  // 1/m_i
+  double same_mass_ = 0.0;   // every particle's mass when they are all equal (the lab's), else 0
+  bool any_pinned_ = false;  // whether hold_pinned has anything to hold (set_pinned updates)
   std::optional<WindField> wind_;  // when the scene has wind
   std::vector<int> pushed_;        // the particles the push acts on
   Vectors start_position_;         // where gravity's potential energy is zero
