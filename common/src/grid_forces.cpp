@@ -306,9 +306,12 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
       a[2 * j + 1] = f[2 * j + 1] * inverse_mass[j];
     }
   }
-  if (finish.pinned)
-    for (int j = 0; j < cols_; ++j)
-      if ((*finish.pinned)[std::size_t(begin + j)]) a[2 * j] = a[2 * j + 1] = 0.0;
+  if (finish.pinned) {
+    const std::vector<int>& pins = *finish.pinned;
+    for (auto pin = std::lower_bound(pins.begin(), pins.end(), begin);
+         pin != pins.end() && *pin < begin + cols_; ++pin)
+      a[2 * (*pin - begin)] = a[2 * (*pin - begin) + 1] = 0.0;
+  }
 }
 
 void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,

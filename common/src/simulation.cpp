@@ -58,8 +58,7 @@ Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits
   inverse_mass_ = particles.mass.cwiseInverse();
   if (particles.size() > 0 && particles.mass.maxCoeff() == particles.mass.minCoeff())
     same_mass_ = particles.mass[0];
-  any_pinned_ =
-      std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
+  list_pins();
   start_position_ = particles.position;
   if (p.wind.enabled) wind_.emplace(p.wind);
   pushed_ = select_particles("pushed", p.pushed, p.rows, p.cols);
@@ -97,7 +96,7 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
     if (!pushing) {
       finish.inverse_mass = &inverse_mass_;
       finish.acceleration = &acceleration_;
-      if (any_pinned_) finish.pinned = &particles.pinned;
+      if (any_pinned_) finish.pinned = &pinned_list_;
     }
     grid_->compute(r, v, force_, finish);
     if (finish.acceleration) return acceleration_;
@@ -193,12 +192,19 @@ void Simulation::set_particle(int i, const Vec2& position, const Vec2& velocity)
   reference_energy_ = std::max(reference_energy_, diagnostics().total());
 }
 
+void Simulation::list_pins() {
+  const std::vector<bool>& pinned = scene_.particles.pinned;
+  pinned_list_.clear();
+  for (std::size_t i = 0; i < pinned.size(); ++i)
+    if (pinned[i]) pinned_list_.push_back(int(i));
+  any_pinned_ = !pinned_list_.empty();
+}
+
 void Simulation::set_pinned(int i, bool pinned) {
   check_index(i);
   Particles& particles = scene_.particles;
   particles.pinned[i] = pinned;  // the model's hold_pinned (5.5) now holds it
-  any_pinned_ =
-      std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
+  list_pins();
   if (pinned) particles.velocity.col(i).setZero();
   integrator_->restart();
   restart_stretch();

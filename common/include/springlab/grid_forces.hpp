@@ -32,8 +32,8 @@ struct GridFinish {
   /// m, kg, when every particle's mass is m (> 0): then the two arrays above are not read (the
   /// same bits, m and 1/m being the arrays' every entry), a large grid's 16 bytes a particle less.
   double same_mass = 0.0;
-  const std::vector<bool>* pinned = nullptr;  ///< pinned particles get zero acceleration
-  Vectors* acceleration = nullptr;            ///< m/s², resized (with inverse_mass)
+  const std::vector<int>* pinned = nullptr;  ///< pinned particles, ascending: zero acceleration
+  Vectors* acceleration = nullptr;           ///< m/s², resized (with inverse_mass)
 };
 
 class GridForces {
