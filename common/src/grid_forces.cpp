@@ -254,7 +254,7 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
         for (long e = 0; e < width; ++e)
           f[e] = s[e] + f[e];
       }
-      finish_row(row, r, v, f, finish);
+      finish_row(row, r, v, f, finish, scratch.springs);
       if (scratch.ring) std::fill(f, f + width, 0.0);  // for row + slots
     }
   }
@@ -263,7 +263,7 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
 // Each thread writes only its own rows of the acceleration and the wind's memory. f: the row's
 // forces, x and y of each particle in turn.
 void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double* __restrict f,
-                            const GridFinish& finish) {
+                            const GridFinish& finish, double* __restrict scratch) {
   const long begin = long(row) * cols_;
   const int width = 2 * cols_;
   const bool same = finish.same_mass > 0.0;
@@ -282,7 +282,10 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
       f[2 * j + 1] += m[j] * gy;
     }
   }
-  if (finish.wind) {
+  if (finish.wind && !remember_springs_) {  // new positions every call: w for this row only
+    finish.wind->velocities(finish.time, r.data() + 2 * begin, cols_, scratch);
+    add_drag(finish.wind->drag(), scratch, v.data() + 2 * begin, width, f);
+  } else if (finish.wind) {
     const double* rr = r.data() + 2 * begin;
     double* remembered = wind_position_.data() + 2 * begin;
     double* w = wind_velocity_.data() + 2 * begin;
@@ -345,7 +348,8 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
   const std::size_t ring = finish.inverse_mass ? row * std::size_t(deepest_ + 1) : 0;
   const std::size_t each = 2 * row + ring;  // a thread's springs, dampers and ring
   buffers_.resize(std::size_t(threads) * each);
-  if (finish.wind && (wind_position_.cols() != n || finish.wind != wind_field_)) {
+  if (finish.wind && remember_springs_ &&
+      (wind_position_.cols() != n || finish.wind != wind_field_)) {
     wind_field_ = finish.wind;
     wind_position_.resize(2, n);
     wind_velocity_.resize(2, n);

@@ -56,12 +56,14 @@ class GridForces {
 
   /// For an integrator that asks again at the same positions (Verlet's velocity iterations): the
   /// springs' forces, which depend on r alone, are then summed apart from the dampers' and
-  /// remembered, and a call at the same r (to the bit) sums only the dampers. The result is the
+  /// remembered, and a call at the same r (to the bit) sums only the dampers; so is the wind w
+  /// at the same t and r. The result is the
   /// same to the bit whether the springs were remembered or not; it differs from the default
   /// (each spring's and damper's force added together) by rounding.
   void remember_springs(bool on) {
     remember_springs_ = on;
     springs_position_.resize(2, 0);
+    wind_time_ = std::numeric_limits<double>::quiet_NaN();
   }
 
   /// Work done so far: passes over the springs' forces (with or without the dampers'), and
@@ -97,7 +99,9 @@ class GridForces {
   enum class Pass { together, apart, dampers_only };
   void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
                     const GridFinish& finish, const Scratch& scratch);
-  void finish_row(int row, const Vectors& r, const Vectors& v, double* f, const GridFinish& finish);
+  // scratch: a free row of 2·cols doubles (the thread's spring buffer, done with for this row).
+  void finish_row(int row, const Vectors& r, const Vectors& v, double* f, const GridFinish& finish,
+                  double* scratch);
 
   std::vector<Link> links_;
   int rows_ = 0, cols_ = 0, deepest_ = 0;  // deepest_: the largest di
@@ -109,8 +113,9 @@ class GridForces {
   Pass pass_ = Pass::together;
   Vectors springs_position_, spring_sums_;
   long spring_passes_ = 0, damper_passes_ = 0;
-  // The wind at each particle for wind_time_ and the position it was computed at: Verlet's
-  // iterations ask again at the same t and r, and get it without the three sines.
+  // With remember_springs, the wind at each particle for wind_time_ and the position it was
+  // computed at: Verlet's iterations ask again at the same t and r, and get it without the three
+  // sines. Other integrators ask at new positions every time and keep no such memory.
   Vectors wind_position_, wind_velocity_;
   double wind_time_ = std::numeric_limits<double>::quiet_NaN();
   const WindField* wind_field_ = nullptr;  // the field wind_velocity_ came from
