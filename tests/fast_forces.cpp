@@ -297,8 +297,9 @@ TEST_CASE("Fast path: the vectorised wind equals w(t, r) to a few units in the l
 TEST_CASE("Two threads: the kit's integrators step the same bits on 1, 2 and 3 threads", "[fast]") {
   REQUIRE(parallel_built());
   SceneParameters p = task_scene(5);
-  p.rows = 130;  // 16,900 particles: above parallel_items, so the vector work is split too
-  p.cols = 130;
+  p.rows = 130;  // 17,030 particles: above parallel_items, so the vector work is split too
+  p.cols = 131;  // odd: each thread's rows (and its buffers) start at another alignment
+  REQUIRE(p.wind.enabled);
   REQUIRE(long(p.rows) * p.cols >= parallel_items);
   const int threads_before = thread_count();
   for (const char* integrator : {"symplectic-euler", "rk4", "velocity-verlet", "verlet"}) {

@@ -337,7 +337,7 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     const bool same = springs_position_.cols() == n &&
                       std::memcmp(springs_position_.data(), r.data(), sizeof(double) * 2 * n) == 0;
     if (!same) {
-      springs_position_ = r;
+      springs_position_.resize(2, 0);  // no sums to reuse until this pass has made them
       spring_sums_.resize(2, n);
     }
     pass_ = same ? Pass::dampers_only : Pass::apart;
@@ -368,6 +368,7 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     compute_rows(first_row, end_row, r, v, force, finish,
                  {mine, mine + row, ring > 0 ? mine + 2 * row : nullptr});
   }
+  if (pass_ == Pass::apart) springs_position_ = r;  // the sums above are r's
   if (finish.wind) wind_time_ = finish.time;
 }
 

@@ -4,14 +4,6 @@
 #include <numbers>
 #include <random>
 
-// glibc's libmvec holds vector versions of sin (2 lanes for SSE2, 4 for AVX2; at most 4 ulp from
-// the exact value, where std::sin is within 1). Declaring them lets GCC vectorise the loop in
-// WindField::velocities; libm links libmvec as needed. (Clang has no such attribute: there the
-// loop calls std::sin one value at a time.)
-#if defined(__GNUC__) && !defined(__clang__)
-extern "C" double sin(double) __attribute__((simd("notinbranch")));
-#endif
-
 namespace springlab {
 
 WindField::WindField(const WindParameters& p)
@@ -41,23 +33,6 @@ Vec2 WindField::velocity(double t, const Vec2& r) const {
   Answer& answer = answers_[i];
   if (answer.t != t || answer.r != r) answer = {t, r, compute(t, r)};
   return answer.w;
-}
-
-// The same sum as compute(), written over plain arrays so that the sines go four at a time.
-__attribute__((target_clones("avx2", "default"))) void WindField::velocities(
-    double t, const double* __restrict r, int count, double* __restrict w) const {
-  const double dx = direction_.x(), dy = direction_.y();
-  const double lag = speed_ > 0.0 ? 1.0 / speed_ : 0.0;
-  const Sine g0 = gusts_[0], g1 = gusts_[1], g2 = gusts_[2];
-  for (int j = 0; j < count; ++j) {
-    const double s = t - (r[2 * j] * dx + r[2 * j + 1] * dy) * lag;
-    const double gust = g0.amplitude * std::sin(g0.angular_frequency * s + g0.phase) +
-                        g1.amplitude * std::sin(g1.angular_frequency * s + g1.phase) +
-                        g2.amplitude * std::sin(g2.angular_frequency * s + g2.phase);
-    const double speed = speed_ * (1.0 + gustiness_ * gust);
-    w[2 * j] = speed * dx;
-    w[2 * j + 1] = speed * dy;
-  }
 }
 
 Vec2 WindField::compute(double t, const Vec2& r) const {

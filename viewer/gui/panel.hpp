@@ -86,11 +86,11 @@ class Panel {
   double shown_time_ = 0.0, shown_plot_time_ = 0.0;  // s
   ParameterWidgets parameters_;
   std::map<std::string, WidgetRect> rects_;
-  std::vector<WidgetRect> backgrounds_;
+  std::vector<WidgetRect> backgrounds_;  // the windows drawn without ImGui's background
   std::vector<WidgetRect> plot_frames_;  // drawn in plot_background by draw_backgrounds
   // The spring families the simulations of build number families_of_build_ have.
   std::array<bool, std::size(spring_families)> present_families_{};
-  int families_of_build_ = -1;  // the windows drawn without ImGui's background
+  int families_of_build_ = -1;
   std::array<char, 512> file_{};
   bool banner_shown_ = false;
 };

@@ -86,6 +86,7 @@ void Session::load(const std::string& name_or_path) {
     parameters_ = loaded_;
     primary_.reset();
     reference_.reset();
+    ++builds_;  // no simulation now: what the panel took from the last one is gone
     problem_ = problem_of(Problem::Kind::invalid,
                           "The scene \"" + name_or_path + "\" cannot be loaded", error.what());
     running_ = false;

@@ -1,0 +1,52 @@
+// WindField::velocities (wind.hpp): w(t, r) for a row of particles at a time, its sines four at
+// a time. Apart from wind.cpp so that only this loop uses libmvec's sines: velocity() and
+// compute() there keep std::sin's own results, and code linked with the task support library
+// alone (a student's) never needs libmvec. Part of the core library, compiled at -O3.
+#include "springlab/wind.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+// glibc's libmvec holds vector versions of sin (2 lanes for SSE2, 4 for AVX2; at most 4 ulp from
+// the exact value, where std::sin is within 1). Declaring them lets GCC vectorise the loop in
+// WindField::velocities; libm links libmvec as needed. (Clang has no such attribute: there the
+// loop calls std::sin one value at a time.)
+#if defined(__GNUC__) && !defined(__clang__)
+extern "C" double sin(double) __attribute__((simd("notinbranch")));
+#endif
+
+namespace springlab {
+
+// The same sum as compute(), written over plain arrays so that the sines go four at a time. The
+// sines run over fixed chunks of aligned storage, whole chunks always: every particle's sine then
+// takes the vector path wherever its row starts in memory (a loop over `count` could be peeled to
+// align its output, giving the first few particles the scalar sine, and so different bits
+// depending on an address).
+__attribute__((target_clones("avx2", "default"))) void WindField::velocities(
+    double t, const double* __restrict r, int count, double* __restrict w) const {
+  constexpr int chunk = 64;
+  alignas(64) double s[chunk], gust[chunk];
+  const double dx = direction_.x(), dy = direction_.y();
+  const double lag = speed_ > 0.0 ? 1.0 / speed_ : 0.0;
+  const Sine g0 = gusts_[0], g1 = gusts_[1], g2 = gusts_[2];
+  for (int first = 0; first < count; first += chunk) {
+    const int n = std::min(chunk, count - first);
+    const double* rc = r + 2 * first;
+    for (int j = 0; j < n; ++j)
+      s[j] = t - (rc[2 * j] * dx + rc[2 * j + 1] * dy) * lag;
+    for (int j = n; j < chunk; ++j)
+      s[j] = 0.0;
+    for (int j = 0; j < chunk; ++j)
+      gust[j] = g0.amplitude * std::sin(g0.angular_frequency * s[j] + g0.phase) +
+                g1.amplitude * std::sin(g1.angular_frequency * s[j] + g1.phase) +
+                g2.amplitude * std::sin(g2.angular_frequency * s[j] + g2.phase);
+    double* wc = w + 2 * first;
+    for (int j = 0; j < n; ++j) {
+      const double speed = speed_ * (1.0 + gustiness_ * gust[j]);
+      wc[2 * j] = speed * dx;
+      wc[2 * j + 1] = speed * dy;
+    }
+  }
+}
+
+}  // namespace springlab
