@@ -20,52 +20,51 @@ namespace {
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
-// s = k (L − ℓ0) / L of a spring whose second end is (dx, dy) from its first. At zero length
-// there is no direction to push along: like (1.1) in the solutions, no force. Dividing by infinity
-// instead of 0 gives that without a branch.
-inline double spring_scale(double k, double rest_length, double dx, double dy) {
+// Spring j of one row of a link joins the particle p = first + j to q = p + offset; rp, rq, vp
+// and vq point at the row's first p and q. Its two forces on p: the spring's s (r_q − r_p) with
+// s = k (L − ℓ0) / L, (1.1), and the damper's b (v_q − v_p), (1.2); q receives the opposite
+// (2.4). At zero length there is no direction to push along: like (1.1) in the solutions, no
+// force; dividing by infinity instead of 0 gives that without a branch. Inlined into each
+// kernel below, whose restrict pointers and plain arrays are what GCC needs to vectorise it.
+struct LinkTerms {
+  double spring_x, spring_y, damper_x, damper_y;
+};
+[[gnu::always_inline]] inline LinkTerms link_terms(double k, double b, double rest_length,
+                                                   const double* rp, const double* rq,
+                                                   const double* vp, const double* vq, int j) {
+  const double dx = rq[2 * j] - rp[2 * j];
+  const double dy = rq[2 * j + 1] - rp[2 * j + 1];
   const double length = std::sqrt(dx * dx + dy * dy);
-  return k * (length - rest_length) / (length > 0.0 ? length : infinity);
+  const double s = k * (length - rest_length) / (length > 0.0 ? length : infinity);
+  return {s * dx, s * dy, b * (vq[2 * j] - vp[2 * j]), b * (vq[2 * j + 1] - vp[2 * j + 1])};
 }
 
-// The forces on the first ends of `count` springs of one row of a link: spring j joins the
-// particle p = first + j to q = p + offset. Written as s (r_q − r_p) + b (v_q − v_p), which is
-// (1.1) + (1.2) for particle p; q receives the opposite (2.4).
-// Restrict pointers and plain arrays: what GCC needs to vectorise the loop; a clone for AVX2
-// (four doubles a vector, chosen at load time on processors that have it) beside the SSE2 one.
-// Neither contracts to fused multiply-adds, so both give the same bits.
+// The kernels: each a clone for AVX2 (four doubles a vector, chosen at load time on processors
+// that have it) beside the SSE2 one; neither contracts to fused multiply-adds, so both give the
+// same bits.
+
+// Each spring's and damper's force together on the first ends of `count` springs, into f.
 __attribute__((target_clones("avx2", "default"))) void link_row(
     double k, double b, double rest_length, const double* __restrict r, const double* __restrict v,
     long first, long offset, int count, double* __restrict f) {
-  const double* rp = r + 2 * first;
-  const double* rq = rp + 2 * offset;
-  const double* vp = v + 2 * first;
-  const double* vq = vp + 2 * offset;
+  const double *rp = r + 2 * first, *vp = v + 2 * first;
   for (int j = 0; j < count; ++j) {
-    const double dx = rq[2 * j] - rp[2 * j];
-    const double dy = rq[2 * j + 1] - rp[2 * j + 1];
-    const double s = spring_scale(k, rest_length, dx, dy);
-    f[2 * j] = s * dx + b * (vq[2 * j] - vp[2 * j]);
-    f[2 * j + 1] = s * dy + b * (vq[2 * j + 1] - vp[2 * j + 1]);
+    const LinkTerms t = link_terms(k, b, rest_length, rp, rp + 2 * offset, vp, vp + 2 * offset, j);
+    f[2 * j] = t.spring_x + t.damper_x;
+    f[2 * j + 1] = t.spring_y + t.damper_y;
   }
 }
 
-// link_row with its forces added straight to p's sums and taken from q's (2.4), for links to
-// another row (di > 0), whose two runs of sums never overlap: the same additions in the same
-// order as link_row followed by add and subtract, without the round trip through a buffer.
+// The same added straight to p's sums and taken from q's, for links to another row (di > 0),
+// whose two runs of sums never overlap: the same additions in the same order as link_row
+// followed by add and subtract, without the round trip through a buffer.
 __attribute__((target_clones("avx2", "default"))) void link_row_into(
     double k, double b, double rest_length, const double* __restrict r, const double* __restrict v,
     long first, long offset, int count, double* __restrict p_sums, double* __restrict q_sums) {
-  const double* rp = r + 2 * first;
-  const double* rq = rp + 2 * offset;
-  const double* vp = v + 2 * first;
-  const double* vq = vp + 2 * offset;
+  const double *rp = r + 2 * first, *vp = v + 2 * first;
   for (int j = 0; j < count; ++j) {
-    const double dx = rq[2 * j] - rp[2 * j];
-    const double dy = rq[2 * j + 1] - rp[2 * j + 1];
-    const double s = spring_scale(k, rest_length, dx, dy);
-    const double fx = s * dx + b * (vq[2 * j] - vp[2 * j]);
-    const double fy = s * dy + b * (vq[2 * j + 1] - vp[2 * j + 1]);
+    const LinkTerms t = link_terms(k, b, rest_length, rp, rp + 2 * offset, vp, vp + 2 * offset, j);
+    const double fx = t.spring_x + t.damper_x, fy = t.spring_y + t.damper_y;
     p_sums[2 * j] += fx;
     p_sums[2 * j + 1] += fy;
     q_sums[2 * j] -= fx;
@@ -73,22 +72,17 @@ __attribute__((target_clones("avx2", "default"))) void link_row_into(
   }
 }
 
-// link_row's two parts apart: the springs' s (r_q − r_p) in f, the dampers' b (v_q − v_p) in d.
+// The two apart: the springs' forces in f, the dampers' in d.
 __attribute__((target_clones("avx2", "default"))) void link_row_apart(
     double k, double b, double rest_length, const double* __restrict r, const double* __restrict v,
     long first, long offset, int count, double* __restrict f, double* __restrict d) {
-  const double* rp = r + 2 * first;
-  const double* rq = rp + 2 * offset;
-  const double* vp = v + 2 * first;
-  const double* vq = vp + 2 * offset;
+  const double *rp = r + 2 * first, *vp = v + 2 * first;
   for (int j = 0; j < count; ++j) {
-    const double dx = rq[2 * j] - rp[2 * j];
-    const double dy = rq[2 * j + 1] - rp[2 * j + 1];
-    const double s = spring_scale(k, rest_length, dx, dy);
-    f[2 * j] = s * dx;
-    f[2 * j + 1] = s * dy;
-    d[2 * j] = b * (vq[2 * j] - vp[2 * j]);
-    d[2 * j + 1] = b * (vq[2 * j + 1] - vp[2 * j + 1]);
+    const LinkTerms t = link_terms(k, b, rest_length, rp, rp + 2 * offset, vp, vp + 2 * offset, j);
+    f[2 * j] = t.spring_x;
+    f[2 * j + 1] = t.spring_y;
+    d[2 * j] = t.damper_x;
+    d[2 * j + 1] = t.damper_y;
   }
 }
 
