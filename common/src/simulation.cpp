@@ -96,7 +96,7 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
     if (!pushing) {
       finish.inverse_mass = &inverse_mass_;
       finish.acceleration = &acceleration_;
-      if (any_pinned_) finish.pinned = &pinned_list_;
+      if (!pinned_list_.empty()) finish.pinned = &pinned_list_;
     }
     grid_->compute(r, v, force_, finish);
     if (finish.acceleration) return acceleration_;
@@ -127,7 +127,7 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
     for (int i : pushed_)
       force_.col(i) += p.push;
   acceleration_.noalias() = force_ * inverse_mass_.asDiagonal();
-  if (any_pinned_) impl_->hold_pinned(particles.pinned, acceleration_);
+  if (!pinned_list_.empty()) impl_->hold_pinned(particles.pinned, acceleration_);
   return acceleration_;
 }
 
@@ -197,7 +197,6 @@ void Simulation::list_pins() {
   pinned_list_.clear();
   for (std::size_t i = 0; i < pinned.size(); ++i)
     if (pinned[i]) pinned_list_.push_back(int(i));
-  any_pinned_ = !pinned_list_.empty();
 }
 
 void Simulation::set_pinned(int i, bool pinned) {

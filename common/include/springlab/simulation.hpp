@@ -104,7 +104,7 @@ class Simulation {
   void continue_from(const Simulation& previous);
 
  private:
-  void list_pins();  // pinned_list_ and any_pinned_ from the particles' flags
+  void list_pins();  // pinned_list_ from the particles' flags
   friend struct detail::ReplayAccess;
   /// What a replay sees of the forces: after the springs (stage 0) and after gravity (stage 1).
   using ForceWatch =
@@ -129,7 +129,6 @@ class Simulation {
   Eigen::VectorXd inverse_mass_;  // 1/m_i
   double same_mass_ = 0.0;  // every particle's mass when they are all equal (the lab's), else 0
   std::vector<int> pinned_list_;   // the pinned particles, ascending (list_pins)
-  bool any_pinned_ = false;        // whether hold_pinned has anything to hold (set_pinned updates)
   std::optional<WindField> wind_;  // when the scene has wind
   std::vector<int> pushed_;        // the particles the push acts on
   Vectors start_position_;         // where gravity's potential energy is zero
