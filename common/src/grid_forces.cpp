@@ -124,6 +124,75 @@ void subtract(double* __restrict to, const double* __restrict f, int values) {
     to[e] -= f[e];
 }
 
+// A row of a link within a row (di = 0, dj > 0) into the row's sums: particle c gets +f of the
+// spring it starts (c < count), then −f of the one it ends (c ≥ dj). The same two additions in
+// the same order as add followed by subtract, in one pass over the sums instead of two.
+void scatter_within_row(const double* __restrict f, int count, int dj, int cols,
+                        double* __restrict sums) {
+  int c = 0;
+  for (; c < std::min(dj, count); ++c) {
+    sums[2 * c] += f[2 * c];
+    sums[2 * c + 1] += f[2 * c + 1];
+  }
+  for (c = dj; c < count; ++c) {
+    sums[2 * c] = (sums[2 * c] + f[2 * c]) - f[2 * (c - dj)];
+    sums[2 * c + 1] = (sums[2 * c + 1] + f[2 * c + 1]) - f[2 * (c - dj) + 1];
+  }
+  for (c = std::max(dj, count); c < cols; ++c) {
+    sums[2 * c] -= f[2 * (c - dj)];
+    sums[2 * c + 1] -= f[2 * (c - dj) + 1];
+  }
+}
+
+// The end of a row of sums F when every particle has one mass, in one pass: the remembered
+// springs' sums first (F = S + F), then m g (5.2), then c (w − v) (5.3), then a = F · (1/m); F is
+// then cleared for the ring's next row. The same operations in the same order as a pass for
+// each, so the same bits, with the row read and written once.
+struct RowEnd {
+  const double* springs;  // S, or null when F holds them already
+  double gravity_x, gravity_y;
+  const double *wind, *velocity;  // w (null: no wind) and v of the row
+  double drag, inverse_mass;
+};
+template <bool Springs, bool Gravity, bool Wind>
+[[gnu::always_inline]] inline void end_row(const RowEnd& end, int width, double* __restrict f,
+                                           double* __restrict a) {
+  const double* __restrict s = end.springs;
+  const double* __restrict w = end.wind;
+  const double* __restrict v = end.velocity;
+  for (int e = 0; e < width; e += 2) {  // x and y of one particle
+    double x = f[e], y = f[e + 1];
+    if constexpr (Springs) x = s[e] + x, y = s[e + 1] + y;
+    if constexpr (Gravity) x += end.gravity_x, y += end.gravity_y;
+    if constexpr (Wind) x += end.drag * (w[e] - v[e]), y += end.drag * (w[e + 1] - v[e + 1]);
+    a[e] = x * end.inverse_mass;
+    a[e + 1] = y * end.inverse_mass;
+    f[e] = f[e + 1] = 0.0;
+  }
+}
+__attribute__((target_clones("avx2", "default"))) void end_row(const RowEnd& end, bool gravity,
+                                                               int width, double* __restrict f,
+                                                               double* __restrict a) {
+  switch (4 * (end.springs != nullptr) + 2 * gravity + (end.wind != nullptr)) {
+    case 0:
+      return end_row<false, false, false>(end, width, f, a);
+    case 1:
+      return end_row<false, false, true>(end, width, f, a);
+    case 2:
+      return end_row<false, true, false>(end, width, f, a);
+    case 3:
+      return end_row<false, true, true>(end, width, f, a);
+    case 4:
+      return end_row<true, false, false>(end, width, f, a);
+    case 5:
+      return end_row<true, false, true>(end, width, f, a);
+    case 6:
+      return end_row<true, true, false>(end, width, f, a);
+    default:
+      return end_row<true, true, true>(end, width, f, a);
+  }
+}
+
 // f += c (w − v), (5.3), over `values` entries.
 void add_drag(double c, const double* __restrict w, const double* __restrict v, int values,
               double* __restrict f) {
@@ -202,9 +271,10 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
   double* springs = spring_sums_.data();
   if (pass_ == Pass::apart) std::fill(springs + width * first_row, springs + width * end_row, 0.0);
   // Adds a row of first ends' forces to the rows this thread owns: +f on p, −f on q (2.4).
-  const auto scatter = [&](const double* f, double* p, double* q, int values) {
-    if (p) add(p, f, values);
-    if (q) subtract(q, f, values);
+  const auto scatter = [&](const double* f, double* p, double* q, const Link& link, int count) {
+    if (link.di == 0 && p) return scatter_within_row(f, count, link.dj, cols_, p);
+    if (p) add(p, f, 2 * count);
+    if (q) subtract(q, f, 2 * count);
   };
   for (int row = std::max(0, first_row - deepest_); row < end_row; ++row) {
     for (const Link& link : links_) {
@@ -225,83 +295,82 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
           }
           link_row(link.k, link.b, link.rest_length, r.data(), v.data(), first, offset, count,
                    scratch.springs);
-          scatter(scratch.springs, p_sums, q_sums, 2 * count);
+          scatter(scratch.springs, p_sums, q_sums, link, count);
           break;
         case Pass::apart:
           link_row_apart(link.k, link.b, link.rest_length, r.data(), v.data(), first, offset, count,
                          scratch.springs, scratch.dampers);
           scatter(scratch.springs, own_p ? springs + 2 * first : nullptr,
-                  own_q ? springs + 2 * (first + offset) : nullptr, 2 * count);
-          scatter(scratch.dampers, p_sums, q_sums, 2 * count);
+                  own_q ? springs + 2 * (first + offset) : nullptr, link, count);
+          scatter(scratch.dampers, p_sums, q_sums, link, count);
           break;
         case Pass::dampers_only:
           damper_row(link.b, v.data(), first, offset, count, scratch.dampers);
-          scatter(scratch.dampers, p_sums, q_sums, 2 * count);
+          scatter(scratch.dampers, p_sums, q_sums, link, count);
           break;
       }
     }
     // No later row has a spring ending on this one: finish it while it is in the cache.
-    if (row >= first_row) {
-      double* f = sums(row);
-      if (pass_ != Pass::together) {
-        const double* s = springs + width * row;
-        for (long e = 0; e < width; ++e)
-          f[e] = s[e] + f[e];
-      }
-      finish_row(row, r, v, f, finish, scratch.springs);
-      if (scratch.ring) std::fill(f, f + width, 0.0);  // for row + slots
-    }
+    if (row >= first_row)
+      finish_row(row, r, v, sums(row), pass_ == Pass::together ? nullptr : springs + width * row,
+                 finish, scratch.springs);
   }
 }
 
 // Each thread writes only its own rows of the acceleration and the wind's memory. f: the row's
-// forces, x and y of each particle in turn.
+// forces, x and y of each particle in turn; spring_sums: the row's remembered springs' sums to
+// add first, or null. With finish.inverse_mass f is a row of the ring, cleared here for the row
+// that takes its place.
 void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double* __restrict f,
-                            const GridFinish& finish, double* __restrict scratch) {
+                            const double* spring_sums, const GridFinish& finish,
+                            double* __restrict scratch) {
   const long begin = long(row) * cols_;
   const int width = 2 * cols_;
-  const bool same = finish.same_mass > 0.0;
-  if (finish.gravity && same) {
-    const double fx = finish.same_mass * finish.gravity->x();  // (5.2)
-    const double fy = finish.same_mass * finish.gravity->y();
-    for (int j = 0; j < cols_; ++j) {
-      f[2 * j] += fx;
-      f[2 * j + 1] += fy;
-    }
-  } else if (finish.gravity) {
-    const double gx = finish.gravity->x(), gy = finish.gravity->y();
-    const double* m = finish.mass->data() + begin;
-    for (int j = 0; j < cols_; ++j) {
-      f[2 * j] += m[j] * gx;  // (5.2)
-      f[2 * j + 1] += m[j] * gy;
-    }
-  }
+  const double* vr = v.data() + 2 * begin;
+  const double* w = nullptr;                // the row's wind velocities
   if (finish.wind && !remember_springs_) {  // new positions every call: w for this row only
     finish.wind->velocities(finish.time, r.data() + 2 * begin, cols_, scratch);
-    add_drag(finish.wind->drag(), scratch, v.data() + 2 * begin, width, f);
+    w = scratch;
   } else if (finish.wind) {
     const double* rr = r.data() + 2 * begin;
     double* remembered = wind_position_.data() + 2 * begin;
-    double* w = wind_velocity_.data() + 2 * begin;
+    double* remembered_w = wind_velocity_.data() + 2 * begin;
     if (finish.time != wind_time_ ||
         std::memcmp(remembered, rr, sizeof(double) * std::size_t(width)) != 0) {
       std::copy(rr, rr + width, remembered);
-      finish.wind->velocities(finish.time, rr, cols_, w);
+      finish.wind->velocities(finish.time, rr, cols_, remembered_w);
     }
-    add_drag(finish.wind->drag(), w, v.data() + 2 * begin, width, f);
+    w = remembered_w;
   }
-  if (!finish.inverse_mass) return;
-  double* __restrict a = finish.acceleration->data() + 2 * begin;
-  if (same) {
-    const double inverse = 1.0 / finish.same_mass;
-    for (int e = 0; e < width; ++e)
-      a[e] = f[e] * inverse;
+  double* __restrict a = finish.inverse_mass ? finish.acceleration->data() + 2 * begin : nullptr;
+  const double m = finish.same_mass;
+  if (a && m > 0.0) {
+    const Vec2 g = finish.gravity ? Vec2(m * finish.gravity->x(), m * finish.gravity->y())  // (5.2)
+                                  : Vec2::Zero();
+    const RowEnd end{spring_sums, g.x(), g.y(), w, vr, finish.wind ? finish.wind->drag() : 0.0,
+                     1.0 / m};
+    end_row(end, finish.gravity != nullptr, width, f, a);
   } else {
+    if (spring_sums)
+      for (long e = 0; e < width; ++e)
+        f[e] = spring_sums[e] + f[e];
+    if (finish.gravity) {
+      const double gx = finish.gravity->x(), gy = finish.gravity->y();
+      const double* mass = finish.mass->data() + begin;
+      for (int j = 0; j < cols_; ++j) {
+        const double mj = m > 0.0 ? m : mass[j];
+        f[2 * j] += mj * gx;  // (5.2)
+        f[2 * j + 1] += mj * gy;
+      }
+    }
+    if (w) add_drag(finish.wind->drag(), w, vr, width, f);
+    if (!a) return;
     const double* inverse_mass = finish.inverse_mass->data() + begin;
     for (int j = 0; j < cols_; ++j) {
       a[2 * j] = f[2 * j] * inverse_mass[j];
       a[2 * j + 1] = f[2 * j + 1] * inverse_mass[j];
     }
+    std::fill(f, f + width, 0.0);
   }
   if (finish.pinned) {
     const std::vector<int>& pins = *finish.pinned;
@@ -349,18 +418,19 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     wind_velocity_.resize(2, n);
     wind_time_ = std::numeric_limits<double>::quiet_NaN();
   }
-#ifdef _OPENMP
-#pragma omp parallel num_threads(threads) if (threads > 1)
-  {
-    const int t = omp_get_thread_num(), granted = omp_get_num_threads();
-#else
-  {
-    const int t = 0, granted = 1;
-#endif
+  const auto rows_of_thread = [&](int t, int granted) {
     const auto [first_row, end_row] = rows_of(t, granted, rows_);
     double* mine = buffers_.data() + std::size_t(t) * each;
     compute_rows(first_row, end_row, r, v, force, finish,
                  {mine, mine + row, ring > 0 ? mine + 2 * row : nullptr});
+  };
+  if (threads == 1) {  // without OpenMP's runtime: a small grid's call costs as little as can be
+    rows_of_thread(0, 1);
+  } else {
+#ifdef _OPENMP
+#pragma omp parallel num_threads(threads)
+    rows_of_thread(omp_get_thread_num(), omp_get_num_threads());
+#endif
   }
   if (pass_ == Pass::apart) springs_position_ = r;  // the sums above are r's
   if (finish.wind) wind_time_ = finish.time;

@@ -100,8 +100,8 @@ class GridForces {
   void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
                     const GridFinish& finish, const Scratch& scratch);
   // scratch: a free row of 2·cols doubles (the thread's spring buffer, done with for this row).
-  void finish_row(int row, const Vectors& r, const Vectors& v, double* f, const GridFinish& finish,
-                  double* scratch);
+  void finish_row(int row, const Vectors& r, const Vectors& v, double* f, const double* spring_sums,
+                  const GridFinish& finish, double* scratch);
 
   std::vector<Link> links_;
   int rows_ = 0, cols_ = 0, deepest_ = 0;  // deepest_: the largest di
