@@ -302,11 +302,15 @@ TEST_CASE("Two threads: the kit's integrators step the same bits on 1, 2 and 3 t
   REQUIRE(p.wind.enabled);
   REQUIRE(long(p.rows) * p.cols >= parallel_items);
   const int threads_before = thread_count();
-  for (const char* integrator : {"symplectic-euler", "rk4", "velocity-verlet", "verlet"}) {
+  // Implicit Euler gathers each particle's springs on two threads and scatters each spring to its
+  // ends on one: the same additions in the same order.
+  for (const char* integrator :
+       {"symplectic-euler", "rk4", "velocity-verlet", "verlet", "implicit-euler"}) {
     INFO(integrator);
     p.integrator = integrator;
     const auto run_on = [&](int threads) {
       set_thread_count(threads);
+      REQUIRE(splits(long(p.rows) * p.cols) == (threads > 1));
       Simulation simulation(p, implementation());
       simulation.advance(3);
       return simulation.particles();

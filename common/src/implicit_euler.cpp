@@ -17,12 +17,16 @@
 //   their indices: about 4 times faster, and no matrix to fill. (At the lab's values CG needs a
 //   few iterations, so the step costs a handful of force evaluations; see
 //   tests/benchmarks/README.md.) The sparse matrix is built only for the LDLᵀ fallback.
+// - On two threads (parallel.hpp) every pass is split by particles: each particle gathers its
+//   springs' terms, in the springs' order, where one thread scatters each spring's to both ends.
+//   The same additions in the same order: the same bits for any thread count.
 // - Pinned particles have no unknowns: their Δv is held at zero in every CG vector (A x is
 //   zeroed there, and so is the preconditioner), so they stay exactly where they are.
 #include "integrators.hpp"
 #include "spring_matrices.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/memory_budget.hpp"
+#include "springlab/parallel.hpp"
 
 #include <Eigen/SparseCholesky>
 
@@ -54,6 +58,10 @@ class ImplicitEuler final : public Integrator {
   void prepare(const Model& model);
   void linearise(const Model& model, const Vectors& r, const Vectors& v, double h);
   void multiply(const Model& model, const Vectors& x, Vectors& product) const;  // A x
+  // For a gather: calls add(s) for each spring s of particle i in the springs' order, and
+  // subtract(s) where i is its second end.
+  template <class Add, class Subtract>
+  void for_springs_of(long i, Add&& add, Subtract&& subtract) const;
   Vectors solve_directly(const Model& model, const Vectors& r, double h, const Vectors& b);
   void build_pattern(const Model& model);
   Eigen::Index slot(int row, int col) const;
@@ -62,6 +70,11 @@ class ImplicitEuler final : public Integrator {
   FreeParticles free_{{}};
   std::vector<int> pinned_;    // the pinned particles
   std::vector<Block> blocks_;  // per spring, at r_n
+  Vectors pulls_;              // per spring, B (v_p − v_q) at r_n and v_n
+  // Each particle's springs in the springs' order, spring s as 2s where the particle is its
+  // first end and 2s + 1 where it is its second: incident_[incident_start_[i] …
+  // incident_start_[i + 1]) are particle i's.
+  std::vector<long> incident_start_, incident_;
   Vectors inverse_diagonal_;   // Jacobi preconditioner: 1 / A's diagonal, 0 where pinned
   Vectors stiffness_times_v_;  // K v_n
   Vectors rhs_, solution_;     // h (f_n − h K v_n) / |…|, Δv / |…|
@@ -86,34 +99,85 @@ void ImplicitEuler::prepare(const Model& model) {
   for (std::size_t i = 0; i < model.pinned.size(); ++i)
     if (model.pinned[i]) pinned_.push_back(int(i));
   pattern_built_ = false;
+  const long n = model.mass.size();
+  incident_start_.assign(std::size_t(n) + 1, 0);
+  for (const Spring& s : model.springs)
+    ++incident_start_[std::size_t(s.p) + 1], ++incident_start_[std::size_t(s.q) + 1];
+  for (std::size_t i = 0; i < std::size_t(n); ++i)
+    incident_start_[i + 1] += incident_start_[i];
+  incident_.resize(2 * model.springs.size());
+  std::vector<long> next(incident_start_.begin(), incident_start_.end() - 1);
+  for (std::size_t s = 0; s < model.springs.size(); ++s) {
+    incident_[std::size_t(next[std::size_t(model.springs[s].p)]++)] = long(2 * s);
+    incident_[std::size_t(next[std::size_t(model.springs[s].q)]++)] = long(2 * s + 1);
+  }
   restart();
 }
 
+template <class Add, class Subtract>
+void ImplicitEuler::for_springs_of(long i, Add&& add, Subtract&& subtract) const {
+  for (long k = incident_start_[std::size_t(i)]; k < incident_start_[std::size_t(i) + 1]; ++k) {
+    const long code = incident_[std::size_t(k)];
+    if (code % 2 == 0)
+      add(code / 2);
+    else
+      subtract(code / 2);
+  }
+}
+
 void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vectors& v, double h) {
-  const Eigen::Index n = r.cols();
-  blocks_.resize(model.springs.size());
+  const long n = r.cols(), springs = long(model.springs.size());
+  blocks_.resize(std::size_t(springs));
+  pulls_.resize(2, springs);
+  for_blocks(springs, [&](long begin, long end) {
+    for (long i = begin; i < end; ++i) {
+      const Spring& s = model.springs[std::size_t(i)];
+      // stiffness_block with clamp_compressed, B = k [(1 − a) û ûᵀ + a I], a = max(0, 1 − ℓ0/L),
+      // with one square root and one division.
+      const Vec2 d = r.col(s.p) - r.col(s.q);
+      const double length2 = d.squaredNorm();
+      Eigen::Matrix2d b = Eigen::Matrix2d::Zero();
+      if (length2 > 0.0) {
+        const double inverse_length = 1.0 / std::sqrt(length2);
+        const double across = std::max(0.0, 1.0 - s.rest_length * inverse_length);
+        b = (s.k * (1.0 - across) * inverse_length * inverse_length) * (d * d.transpose());
+        b.diagonal().array() += s.k * across;
+      }
+      blocks_[std::size_t(i)] = {h * s.b + h * h * b(0, 0), h * h * b(0, 1),
+                                 h * s.b + h * h * b(1, 1)};
+      pulls_.col(i) = b * (v.col(s.p) - v.col(s.q));
+    }
+  });
+  // K v_n and A's diagonal M + Σ (S_xx, S_yy) over each particle's springs.
   stiffness_times_v_.setZero(2, n);
   Vectors diagonal = model.mass.transpose().replicate<2, 1>();
-  for (std::size_t i = 0; i < model.springs.size(); ++i) {
-    const Spring& s = model.springs[i];
-    // stiffness_block with clamp_compressed, B = k [(1 − a) û ûᵀ + a I], a = max(0, 1 − ℓ0/L),
-    // with one square root and one division.
-    const Vec2 d = r.col(s.p) - r.col(s.q);
-    const double length2 = d.squaredNorm();
-    Eigen::Matrix2d b = Eigen::Matrix2d::Zero();
-    if (length2 > 0.0) {
-      const double inverse_length = 1.0 / std::sqrt(length2);
-      const double across = std::max(0.0, 1.0 - s.rest_length * inverse_length);
-      b = (s.k * (1.0 - across) * inverse_length * inverse_length) * (d * d.transpose());
-      b.diagonal().array() += s.k * across;
+  if (splits(n)) {
+    for_blocks(n, [&](long begin, long end) {
+      for (long i = begin; i < end; ++i) {
+        const auto both_ends = [&](long s) {
+          diagonal.col(i) += Vec2(blocks_[std::size_t(s)].xx, blocks_[std::size_t(s)].yy);
+        };
+        for_springs_of(
+            i,
+            [&](long s) {
+              stiffness_times_v_.col(i) += pulls_.col(s);
+              both_ends(s);
+            },
+            [&](long s) {
+              stiffness_times_v_.col(i) -= pulls_.col(s);
+              both_ends(s);
+            });
+      }
+    });
+  } else {
+    for (long i = 0; i < springs; ++i) {
+      const Spring& s = model.springs[std::size_t(i)];
+      const Block& block = blocks_[std::size_t(i)];
+      stiffness_times_v_.col(s.p) += pulls_.col(i);
+      stiffness_times_v_.col(s.q) -= pulls_.col(i);
+      diagonal.col(s.p) += Vec2(block.xx, block.yy);
+      diagonal.col(s.q) += Vec2(block.xx, block.yy);
     }
-    const Block block{h * s.b + h * h * b(0, 0), h * h * b(0, 1), h * s.b + h * h * b(1, 1)};
-    blocks_[i] = block;
-    const Vec2 pull = b * (v.col(s.p) - v.col(s.q));
-    stiffness_times_v_.col(s.p) += pull;
-    stiffness_times_v_.col(s.q) -= pull;
-    diagonal.col(s.p) += Vec2(block.xx, block.yy);
-    diagonal.col(s.q) += Vec2(block.xx, block.yy);
   }
   inverse_diagonal_ = diagonal.cwiseInverse();
   for (const int i : pinned_)
@@ -121,16 +185,32 @@ void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vector
 }
 
 void ImplicitEuler::multiply(const Model& model, const Vectors& x, Vectors& product) const {
+  // S (x_p − x_q) of spring s: added to p, taken from q.
+  const auto term = [&](long s) {
+    const Spring& spring = model.springs[std::size_t(s)];
+    const Block& b = blocks_[std::size_t(s)];
+    const double dx = x(0, spring.p) - x(0, spring.q), dy = x(1, spring.p) - x(1, spring.q);
+    return Vec2(b.xx * dx + b.xy * dy, b.xy * dx + b.yy * dy);
+  };
+  const long n = x.cols();
+  product.resize(2, n);
+  if (splits(n)) {
+    for_blocks(n, [&](long begin, long end) {
+      for (long i = begin; i < end; ++i) {
+        Vec2 sum = x.col(i) * model.mass[i];
+        for_springs_of(
+            i, [&](long s) { sum += term(s); }, [&](long s) { sum -= term(s); });
+        product.col(i) = model.pinned[std::size_t(i)] ? Vec2::Zero() : sum;
+      }
+    });
+    return;
+  }
   product.noalias() = x * model.mass.asDiagonal();
   for (std::size_t i = 0; i < model.springs.size(); ++i) {
     const Spring& s = model.springs[i];
-    const Block& b = blocks_[i];
-    const double dx = x(0, s.p) - x(0, s.q), dy = x(1, s.p) - x(1, s.q);
-    const double fx = b.xx * dx + b.xy * dy, fy = b.xy * dx + b.yy * dy;
-    product(0, s.p) += fx;
-    product(1, s.p) += fy;
-    product(0, s.q) -= fx;
-    product(1, s.q) -= fy;
+    const Vec2 f = term(long(i));
+    product.col(s.p) += f;
+    product.col(s.q) -= f;
   }
   for (const int i : pinned_)
     product.col(i).setZero();
@@ -241,45 +321,58 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
   if (free_.size() == 0) return;
   const Vectors& a = model.acceleration(r, v);
   linearise(model, r, v, h);
-  rhs_ = h * (a * model.mass.asDiagonal());  // h f_n
-  rhs_ -= h * h * stiffness_times_v_;
-  for (const int i : pinned_)
-    rhs_.col(i).setZero();
+  const long n = r.cols();
+  rhs_.resize(2, n);
+  // h f_n − h² K v_n, and its norm.
+  const double scale = std::sqrt(sum_blocks(n, [&](long begin, long end) {
+    auto block = columns(rhs_, begin, end);
+    block = h * (columns(a, begin, end) * model.mass.segment(begin, end - begin).asDiagonal());
+    block -= h * h * columns(stiffness_times_v_, begin, end);
+    for (long i = begin; i < end; ++i)
+      if (model.pinned[std::size_t(i)]) rhs_.col(i).setZero();
+    return block.squaredNorm();
+  }));
   // Solved for Δv / |rhs|, so that CG's tolerance is relative to a right-hand side of norm 1:
   // CG judges convergence by squared norms, which underflow once a decaying motion reaches
   // 1e-155 and would stop it before its first iteration.
-  const double scale = rhs_.norm();
-  const bool know_last = guess_.cols() == rhs_.cols();  // the last step's Δv
-  const bool know_two = know_last && previous_.cols() == rhs_.cols();
+  const bool know_last = guess_.cols() == n;  // the last step's Δv
+  const bool know_two = know_last && previous_.cols() == n;
   if (scale == 0.0) {
-    solution_.setZero(2, rhs_.cols());
+    solution_.setZero(2, n);
   } else {
-    rhs_ /= scale;
     // The first guess: Δv extrapolated from the last two steps (it changes smoothly from step to
     // step), which saves about one CG iteration of six over the last Δv alone.
-    if (know_two) {
-      solution_ = (2.0 * guess_ - previous_) / scale;
-    } else if (know_last) {
-      solution_ = guess_ / scale;
-    } else {
-      solution_.setZero(2, rhs_.cols());
-    }
+    solution_.resize(2, n);
+    for_blocks(n, [&](long begin, long end) {
+      columns(rhs_, begin, end) /= scale;
+      auto guess = columns(solution_, begin, end);
+      if (know_two) {
+        guess = (2.0 * columns(guess_, begin, end) - columns(previous_, begin, end)) / scale;
+      } else if (know_last) {
+        guess = columns(guess_, begin, end) / scale;
+      } else {
+        guess.setZero();
+      }
+    });
     const auto product = [&](const Vectors& x, Vectors& ax) { multiply(model, x, ax); };
     if (!conjugate_gradients(product, inverse_diagonal_, rhs_, solution_, implicit_euler_tolerance,
                              100, cg_))
       solution_ = solve_directly(model, r, h, rhs_);
-    solution_ *= scale;
   }
   if (know_last) {
     previous_.swap(guess_);
   } else {
     previous_.resize(2, 0);
   }
-  guess_ = solution_;  // Δv
-  for (const int i : free_.particle) {
-    v.col(i) += guess_.col(i);
-    r.col(i) += h * v.col(i);
-  }
+  guess_.resize(2, n);
+  for_blocks(n, [&](long begin, long end) {
+    columns(guess_, begin, end) = columns(solution_, begin, end) * scale;  // Δv
+    for (long i = begin; i < end; ++i)
+      if (!model.pinned[std::size_t(i)]) {
+        v.col(i) += guess_.col(i);
+        r.col(i) += h * v.col(i);
+      }
+  });
 }
 
 }  // namespace

@@ -145,11 +145,14 @@ double estimated_bytes(const SceneParameters& p) {
   // Measured (max RSS of springlab-run, task5, about 6 springs a particle): RK4 and explicit
   // Euler 0.62 KiB a particle at 200x200 (estimate 0.73), 0.52 at 1000x1000 (0.75); Verlet
   // 0.51 at 1000x1000 (0.72); velocity Verlet 0.95 at 200x200 (0.97); implicit Euler with CG
-  // alone 0.97 (300x300: 102 MiB, estimate 103). High rather than low.
+  // alone 1.14 (300x300: 103 MiB before its per-spring pulls and spring lists, 32 B a spring,
+  // estimate 115). High rather than low.
   double bytes =
       8 * mib + particles * (136 + integrator_bytes_per_particle(p.integrator)) + springs * 80;
   if (p.integrator == "velocity-verlet") bytes += 16 * springs;  // its dampers
-  if (p.integrator == "implicit-euler") bytes += 24 * springs;
+  // Implicit Euler's blocks S (24 B), pulls B v (16 B), and each spring twice in the particles'
+  // lists (16 B).
+  if (p.integrator == "implicit-euler") bytes += 56 * springs;
   return bytes;
 }
 

@@ -35,6 +35,10 @@ bool parallel_built() {
 #endif
 }
 
+bool splits(long n) {
+  return n >= parallel_items && thread_count() > 1;
+}
+
 namespace detail {
 
 void run_blocks(long n, BlockBody call, void* body) {

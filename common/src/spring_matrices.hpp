@@ -2,6 +2,7 @@
 // shared by the implicit integrators and the stability theory. Private to the core library.
 #pragma once
 
+#include "springlab/parallel.hpp"
 #include "springlab/types.hpp"
 
 #include <Eigen/SparseCore>
@@ -54,6 +55,12 @@ struct ConjugateGradientStorage {
   long products = 0;  // every multiply of every solve: the integrators' SolverWork
 };
 
+/// Columns [begin, end) of m: a block of for_blocks or sum_blocks (parallel.hpp).
+template <class Matrix>
+auto columns(Matrix& m, long begin, long end) {
+  return m.middleCols(begin, end - begin);
+}
+
 /// Solves A x = b for a symmetric positive definite A given only as a product,
 /// multiply(x, product) setting product = A x, by conjugate gradients with the diagonal
 /// preconditioner inverse_diagonal (1/A_ii; 0 for a coordinate held at zero, where b and
@@ -62,37 +69,62 @@ struct ConjugateGradientStorage {
 /// runs matrix-free only through a wrapper type that specialises Eigen::internal's traits and
 /// product and a preconditioner class of our own, on flat vectors: more code, reaching into
 /// Eigen's internals, than these few lines on the 2×n vectors the integrators hold.)
+/// The vector work is split over threads by particles (for_blocks), and every dot product is
+/// summed in sum_blocks' fixed blocks: the same bits for any thread count.
 /// b, x: one column per particle. False when it has not converged.
 template <class Multiply>
 bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, const Vectors& b,
                          Vectors& x, double tolerance, int max_iterations,
                          ConjugateGradientStorage& cg) {
-  const double b_norm2 = b.squaredNorm();
+  const long n = b.cols();
+  const double b_norm2 =
+      sum_blocks(n, [&](long begin, long end) { return columns(b, begin, end).squaredNorm(); });
   if (b_norm2 == 0.0) {
-    x.setZero(b.rows(), b.cols());
+    x.setZero(b.rows(), n);
     return true;
   }
   const double threshold =
       std::max(tolerance * tolerance * b_norm2, std::numeric_limits<double>::min());
-  multiply(x, cg.product);
+  Vectors &r = cg.residual, &d = cg.direction, &ad = cg.product, &z = cg.preconditioned;
+  r.resize(2, n);
+  d.resize(2, n);
+  z.resize(2, n);
+  // z = D⁻¹ r, and r · z.
+  const auto precondition = [&] {
+    return sum_blocks(n, [&](long begin, long end) {
+      columns(z, begin, end) =
+          columns(inverse_diagonal, begin, end).cwiseProduct(columns(r, begin, end));
+      return columns(r, begin, end).cwiseProduct(columns(z, begin, end)).sum();
+    });
+  };
+  multiply(x, ad);
   ++cg.products;
-  cg.residual = b - cg.product;
-  double residual_norm2 = cg.residual.squaredNorm();
+  double residual_norm2 = sum_blocks(n, [&](long begin, long end) {
+    columns(r, begin, end) = columns(b, begin, end) - columns(ad, begin, end);
+    return columns(r, begin, end).squaredNorm();
+  });
   if (residual_norm2 < threshold) return true;
-  cg.direction = inverse_diagonal.cwiseProduct(cg.residual);
-  double rz = cg.residual.cwiseProduct(cg.direction).sum();
+  double rz = precondition();
+  for_blocks(n, [&](long begin, long end) { columns(d, begin, end) = columns(z, begin, end); });
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
-    multiply(cg.direction, cg.product);
+    multiply(d, ad);
     ++cg.products;
-    const double alpha = rz / cg.direction.cwiseProduct(cg.product).sum();
-    x += alpha * cg.direction;
-    cg.residual -= alpha * cg.product;
-    residual_norm2 = cg.residual.squaredNorm();
+    const double alpha =
+        rz / sum_blocks(n, [&](long begin, long end) {
+          return columns(d, begin, end).cwiseProduct(columns(ad, begin, end)).sum();
+        });
+    residual_norm2 = sum_blocks(n, [&](long begin, long end) {
+      columns(x, begin, end) += alpha * columns(d, begin, end);
+      columns(r, begin, end) -= alpha * columns(ad, begin, end);
+      return columns(r, begin, end).squaredNorm();
+    });
     if (residual_norm2 < threshold) return true;
-    cg.preconditioned = inverse_diagonal.cwiseProduct(cg.residual);
     const double rz_old = rz;
-    rz = cg.residual.cwiseProduct(cg.preconditioned).sum();
-    cg.direction = cg.preconditioned + (rz / rz_old) * cg.direction;
+    rz = precondition();
+    const double beta = rz / rz_old;
+    for_blocks(n, [&](long begin, long end) {
+      columns(d, begin, end) = columns(z, begin, end) + beta * columns(d, begin, end);
+    });
   }
   return std::sqrt(residual_norm2 / b_norm2) <= tolerance;
 }

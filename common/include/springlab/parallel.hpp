@@ -23,6 +23,10 @@ bool parallel_built();
 /// a few microseconds, as much as a pass over some 10,000 particles.
 inline constexpr long parallel_items = 16384;
 
+/// Whether for_blocks over n items runs on more than one thread (from parallel_items up, with
+/// thread_count() > 1): for work that must then take another shape, e.g. gather instead of scatter.
+bool splits(long n);
+
 /// The items a sum_blocks term adds up at a time: fixed, so the blocks and the order in which
 /// their sums are added do not depend on the thread count.
 inline constexpr long sum_block = 8192;
