@@ -33,6 +33,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace springlab::detail {
@@ -50,18 +51,20 @@ class ImplicitEuler final : public Integrator {
 
  private:
   // S = hb I + h²B of one spring, symmetric: what the spring adds to A's pp and qq blocks and
-  // takes from its pq and qp blocks.
+  // takes from its pq and qp blocks; with the spring's ends, so that A x reads one array.
   struct Block {
     double xx, xy, yy;
+    int p, q;
   };
 
   void prepare(const Model& model);
   void linearise(const Model& model, const Vectors& r, const Vectors& v, double h);
   void multiply(const Model& model, const Vectors& x, Vectors& product) const;  // A x
-  // For a gather: calls add(s) for each spring s of particle i in the springs' order, and
-  // subtract(s) where i is its second end.
-  template <class Add, class Subtract>
-  void for_springs_of(long i, Add&& add, Subtract&& subtract) const;
+  // For a gather: calls each(s, sign) for each spring s of particle i in the springs' order, with
+  // sign +1 where i is its first end and −1 where it is its second. (a + (−1)·t is a − t to the
+  // bit, without a branch the processor could not predict.)
+  template <class Each>
+  void for_springs_of(long i, Each&& each) const;
   Vectors solve_directly(const Model& model, const Vectors& r, double h, const Vectors& b);
   void build_pattern(const Model& model);
   Eigen::Index slot(int row, int col) const;
@@ -70,11 +73,15 @@ class ImplicitEuler final : public Integrator {
   FreeParticles free_{{}};
   std::vector<int> pinned_;    // the pinned particles
   std::vector<Block> blocks_;  // per spring, at r_n
-  Vectors pulls_;              // per spring, B (v_p − v_q) at r_n and v_n
+  // On two threads, a vector per spring for the gathers: its pull B (v_p − v_q) in linearise,
+  // its S (x_p − x_q) in multiply.
+  mutable Vectors per_spring_;
   // Each particle's springs in the springs' order, spring s as 2s where the particle is its
   // first end and 2s + 1 where it is its second: incident_[incident_start_[i] …
-  // incident_start_[i + 1]) are particle i's.
-  std::vector<long> incident_start_, incident_;
+  // incident_start_[i + 1]) are particle i's. (32 bits: a scene's memory holds far fewer than
+  // 2^31 springs, at 40 B each.)
+  std::vector<long> incident_start_;
+  std::vector<std::uint32_t> incident_;
   Vectors inverse_diagonal_;   // Jacobi preconditioner: 1 / A's diagonal, 0 where pinned
   Vectors stiffness_times_v_;  // K v_n
   Vectors rhs_, solution_;     // h (f_n − h K v_n) / |…|, Δv / |…|
@@ -108,73 +115,65 @@ void ImplicitEuler::prepare(const Model& model) {
   incident_.resize(2 * model.springs.size());
   std::vector<long> next(incident_start_.begin(), incident_start_.end() - 1);
   for (std::size_t s = 0; s < model.springs.size(); ++s) {
-    incident_[std::size_t(next[std::size_t(model.springs[s].p)]++)] = long(2 * s);
-    incident_[std::size_t(next[std::size_t(model.springs[s].q)]++)] = long(2 * s + 1);
+    incident_[std::size_t(next[std::size_t(model.springs[s].p)]++)] = std::uint32_t(2 * s);
+    incident_[std::size_t(next[std::size_t(model.springs[s].q)]++)] = std::uint32_t(2 * s + 1);
   }
   restart();
 }
 
-template <class Add, class Subtract>
-void ImplicitEuler::for_springs_of(long i, Add&& add, Subtract&& subtract) const {
+template <class Each>
+void ImplicitEuler::for_springs_of(long i, Each&& each) const {
   for (long k = incident_start_[std::size_t(i)]; k < incident_start_[std::size_t(i) + 1]; ++k) {
-    const long code = incident_[std::size_t(k)];
-    if (code % 2 == 0)
-      add(code / 2);
-    else
-      subtract(code / 2);
+    const std::uint32_t code = incident_[std::size_t(k)];
+    each(long(code / 2), 1.0 - 2.0 * double(code % 2));
   }
 }
 
 void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vectors& v, double h) {
   const long n = r.cols(), springs = long(model.springs.size());
   blocks_.resize(std::size_t(springs));
-  pulls_.resize(2, springs);
-  for_blocks(springs, [&](long begin, long end) {
-    for (long i = begin; i < end; ++i) {
-      const Spring& s = model.springs[std::size_t(i)];
-      // stiffness_block with clamp_compressed, B = k [(1 − a) û ûᵀ + a I], a = max(0, 1 − ℓ0/L),
-      // with one square root and one division.
-      const Vec2 d = r.col(s.p) - r.col(s.q);
-      const double length2 = d.squaredNorm();
-      Eigen::Matrix2d b = Eigen::Matrix2d::Zero();
-      if (length2 > 0.0) {
-        const double inverse_length = 1.0 / std::sqrt(length2);
-        const double across = std::max(0.0, 1.0 - s.rest_length * inverse_length);
-        b = (s.k * (1.0 - across) * inverse_length * inverse_length) * (d * d.transpose());
-        b.diagonal().array() += s.k * across;
-      }
-      blocks_[std::size_t(i)] = {h * s.b + h * h * b(0, 0), h * h * b(0, 1),
-                                 h * s.b + h * h * b(1, 1)};
-      pulls_.col(i) = b * (v.col(s.p) - v.col(s.q));
+  // Spring i's block S, kept, and its pull B (v_p − v_q), returned.
+  const auto linearise_spring = [&](long i) -> Vec2 {
+    const Spring& s = model.springs[std::size_t(i)];
+    // stiffness_block with clamp_compressed, B = k [(1 − a) û ûᵀ + a I], a = max(0, 1 − ℓ0/L),
+    // with one square root and one division.
+    const Vec2 d = r.col(s.p) - r.col(s.q);
+    const double length2 = d.squaredNorm();
+    Eigen::Matrix2d b = Eigen::Matrix2d::Zero();
+    if (length2 > 0.0) {
+      const double inverse_length = 1.0 / std::sqrt(length2);
+      const double across = std::max(0.0, 1.0 - s.rest_length * inverse_length);
+      b = (s.k * (1.0 - across) * inverse_length * inverse_length) * (d * d.transpose());
+      b.diagonal().array() += s.k * across;
     }
-  });
+    blocks_[std::size_t(i)] = {h * s.b + h * h * b(0, 0), h * h * b(0, 1),
+                               h * s.b + h * h * b(1, 1), s.p, s.q};
+    return b * (v.col(s.p) - v.col(s.q));
+  };
   // K v_n and A's diagonal M + Σ (S_xx, S_yy) over each particle's springs.
   stiffness_times_v_.setZero(2, n);
   Vectors diagonal = model.mass.transpose().replicate<2, 1>();
   if (splits(n)) {
+    per_spring_.resize(2, springs);
+    for_blocks(springs, [&](long begin, long end) {
+      for (long i = begin; i < end; ++i)
+        per_spring_.col(i) = linearise_spring(i);
+    });
     for_blocks(n, [&](long begin, long end) {
       for (long i = begin; i < end; ++i) {
-        const auto both_ends = [&](long s) {
+        for_springs_of(i, [&](long s, double sign) {
+          stiffness_times_v_.col(i) += sign * per_spring_.col(s);
           diagonal.col(i) += Vec2(blocks_[std::size_t(s)].xx, blocks_[std::size_t(s)].yy);
-        };
-        for_springs_of(
-            i,
-            [&](long s) {
-              stiffness_times_v_.col(i) += pulls_.col(s);
-              both_ends(s);
-            },
-            [&](long s) {
-              stiffness_times_v_.col(i) -= pulls_.col(s);
-              both_ends(s);
-            });
+        });
       }
     });
   } else {
     for (long i = 0; i < springs; ++i) {
       const Spring& s = model.springs[std::size_t(i)];
+      const Vec2 pull = linearise_spring(i);
       const Block& block = blocks_[std::size_t(i)];
-      stiffness_times_v_.col(s.p) += pulls_.col(i);
-      stiffness_times_v_.col(s.q) -= pulls_.col(i);
+      stiffness_times_v_.col(s.p) += pull;
+      stiffness_times_v_.col(s.q) -= pull;
       diagonal.col(s.p) += Vec2(block.xx, block.yy);
       diagonal.col(s.q) += Vec2(block.xx, block.yy);
     }
@@ -187,19 +186,23 @@ void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vector
 void ImplicitEuler::multiply(const Model& model, const Vectors& x, Vectors& product) const {
   // S (x_p − x_q) of spring s: added to p, taken from q.
   const auto term = [&](long s) {
-    const Spring& spring = model.springs[std::size_t(s)];
     const Block& b = blocks_[std::size_t(s)];
-    const double dx = x(0, spring.p) - x(0, spring.q), dy = x(1, spring.p) - x(1, spring.q);
+    const double dx = x(0, b.p) - x(0, b.q), dy = x(1, b.p) - x(1, b.q);
     return Vec2(b.xx * dx + b.xy * dy, b.xy * dx + b.yy * dy);
   };
   const long n = x.cols();
   product.resize(2, n);
-  if (splits(n)) {
+  if (splits(n)) {  // each spring's term once, then each particle gathers its springs'
+    const long springs = long(model.springs.size());
+    per_spring_.resize(2, springs);
+    for_blocks(springs, [&](long begin, long end) {
+      for (long s = begin; s < end; ++s)
+        per_spring_.col(s) = term(s);
+    });
     for_blocks(n, [&](long begin, long end) {
       for (long i = begin; i < end; ++i) {
         Vec2 sum = x.col(i) * model.mass[i];
-        for_springs_of(
-            i, [&](long s) { sum += term(s); }, [&](long s) { sum -= term(s); });
+        for_springs_of(i, [&](long s, double sign) { sum += sign * per_spring_.col(s); });
         product.col(i) = model.pinned[std::size_t(i)] ? Vec2::Zero() : sum;
       }
     });
@@ -207,10 +210,13 @@ void ImplicitEuler::multiply(const Model& model, const Vectors& x, Vectors& prod
   }
   product.noalias() = x * model.mass.asDiagonal();
   for (std::size_t i = 0; i < model.springs.size(); ++i) {
-    const Spring& s = model.springs[i];
-    const Vec2 f = term(long(i));
-    product.col(s.p) += f;
-    product.col(s.q) -= f;
+    const Block& b = blocks_[i];
+    const double dx = x(0, b.p) - x(0, b.q), dy = x(1, b.p) - x(1, b.q);
+    const double fx = b.xx * dx + b.xy * dy, fy = b.xy * dx + b.yy * dy;  // as term(i)
+    product(0, b.p) += fx;
+    product(1, b.p) += fy;
+    product(0, b.q) -= fx;
+    product(1, b.q) -= fy;
   }
   for (const int i : pinned_)
     product.col(i).setZero();
@@ -325,12 +331,13 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
   rhs_.resize(2, n);
   // h f_n − h² K v_n, and its norm.
   const double scale = std::sqrt(sum_blocks(n, [&](long begin, long end) {
-    auto block = columns(rhs_, begin, end);
-    block = h * (columns(a, begin, end) * model.mass.segment(begin, end - begin).asDiagonal());
-    block -= h * h * columns(stiffness_times_v_, begin, end);
+    const long count = end - begin;
+    rhs_.middleCols(begin, count) =
+        h * (a.middleCols(begin, count) * model.mass.segment(begin, count).asDiagonal());
+    flat(rhs_, begin, end) -= h * h * flat(stiffness_times_v_, begin, end);
     for (long i = begin; i < end; ++i)
       if (model.pinned[std::size_t(i)]) rhs_.col(i).setZero();
-    return block.squaredNorm();
+    return flat(rhs_, begin, end).squaredNorm();
   }));
   // Solved for Δv / |rhs|, so that CG's tolerance is relative to a right-hand side of norm 1:
   // CG judges convergence by squared norms, which underflow once a decaying motion reaches
@@ -344,12 +351,12 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
     // step), which saves about one CG iteration of six over the last Δv alone.
     solution_.resize(2, n);
     for_blocks(n, [&](long begin, long end) {
-      columns(rhs_, begin, end) /= scale;
-      auto guess = columns(solution_, begin, end);
+      flat(rhs_, begin, end) /= scale;
+      auto guess = flat(solution_, begin, end);
       if (know_two) {
-        guess = (2.0 * columns(guess_, begin, end) - columns(previous_, begin, end)) / scale;
+        guess = (2.0 * flat(guess_, begin, end) - flat(previous_, begin, end)) / scale;
       } else if (know_last) {
-        guess = columns(guess_, begin, end) / scale;
+        guess = flat(guess_, begin, end) / scale;
       } else {
         guess.setZero();
       }
@@ -366,7 +373,7 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
   }
   guess_.resize(2, n);
   for_blocks(n, [&](long begin, long end) {
-    columns(guess_, begin, end) = columns(solution_, begin, end) * scale;  // Δv
+    flat(guess_, begin, end) = flat(solution_, begin, end) * scale;  // Δv
     for (long i = begin; i < end; ++i)
       if (!model.pinned[std::size_t(i)]) {
         v.col(i) += guess_.col(i);

@@ -150,8 +150,8 @@ double estimated_bytes(const SceneParameters& p) {
   double bytes =
       8 * mib + particles * (136 + integrator_bytes_per_particle(p.integrator)) + springs * 80;
   if (p.integrator == "velocity-verlet") bytes += 16 * springs;  // its dampers
-  // Implicit Euler's blocks S (24 B), pulls B v (16 B), and each spring twice in the particles'
-  // lists (16 B).
+  // Implicit Euler's blocks S with their ends (32 B), a vector per spring for its gathers on two
+  // threads (16 B), and each spring twice in the particles' lists (8 B).
   if (p.integrator == "implicit-euler") bytes += 56 * springs;
   return bytes;
 }

@@ -55,10 +55,13 @@ struct ConjugateGradientStorage {
   long products = 0;  // every multiply of every solve: the integrators' SolverWork
 };
 
-/// Columns [begin, end) of m: a block of for_blocks or sum_blocks (parallel.hpp).
-template <class Matrix>
-auto columns(Matrix& m, long begin, long end) {
-  return m.middleCols(begin, end - begin);
+/// Particles [begin, end) of m (one column each) as one flat vector of 2 (end − begin) numbers:
+/// a block of for_blocks or sum_blocks, which Eigen then vectorises whole.
+inline Eigen::Map<Eigen::VectorXd> flat(Vectors& m, long begin, long end) {
+  return {m.data() + 2 * begin, 2 * (end - begin)};
+}
+inline Eigen::Map<const Eigen::VectorXd> flat(const Vectors& m, long begin, long end) {
+  return {m.data() + 2 * begin, 2 * (end - begin)};
 }
 
 /// Solves A x = b for a symmetric positive definite A given only as a product,
@@ -78,7 +81,7 @@ bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, c
                          ConjugateGradientStorage& cg) {
   const long n = b.cols();
   const double b_norm2 =
-      sum_blocks(n, [&](long begin, long end) { return columns(b, begin, end).squaredNorm(); });
+      sum_blocks(n, [&](long begin, long end) { return flat(b, begin, end).squaredNorm(); });
   if (b_norm2 == 0.0) {
     x.setZero(b.rows(), n);
     return true;
@@ -92,38 +95,36 @@ bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, c
   // z = D⁻¹ r, and r · z.
   const auto precondition = [&] {
     return sum_blocks(n, [&](long begin, long end) {
-      columns(z, begin, end) =
-          columns(inverse_diagonal, begin, end).cwiseProduct(columns(r, begin, end));
-      return columns(r, begin, end).cwiseProduct(columns(z, begin, end)).sum();
+      flat(z, begin, end) = flat(inverse_diagonal, begin, end).cwiseProduct(flat(r, begin, end));
+      return flat(r, begin, end).cwiseProduct(flat(z, begin, end)).sum();
     });
   };
   multiply(x, ad);
   ++cg.products;
   double residual_norm2 = sum_blocks(n, [&](long begin, long end) {
-    columns(r, begin, end) = columns(b, begin, end) - columns(ad, begin, end);
-    return columns(r, begin, end).squaredNorm();
+    flat(r, begin, end) = flat(b, begin, end) - flat(ad, begin, end);
+    return flat(r, begin, end).squaredNorm();
   });
   if (residual_norm2 < threshold) return true;
   double rz = precondition();
-  for_blocks(n, [&](long begin, long end) { columns(d, begin, end) = columns(z, begin, end); });
+  for_blocks(n, [&](long begin, long end) { flat(d, begin, end) = flat(z, begin, end); });
   for (int iteration = 0; iteration < max_iterations; ++iteration) {
     multiply(d, ad);
     ++cg.products;
-    const double alpha =
-        rz / sum_blocks(n, [&](long begin, long end) {
-          return columns(d, begin, end).cwiseProduct(columns(ad, begin, end)).sum();
-        });
+    const double alpha = rz / sum_blocks(n, [&](long begin, long end) {
+                           return flat(d, begin, end).cwiseProduct(flat(ad, begin, end)).sum();
+                         });
     residual_norm2 = sum_blocks(n, [&](long begin, long end) {
-      columns(x, begin, end) += alpha * columns(d, begin, end);
-      columns(r, begin, end) -= alpha * columns(ad, begin, end);
-      return columns(r, begin, end).squaredNorm();
+      flat(x, begin, end) += alpha * flat(d, begin, end);
+      flat(r, begin, end) -= alpha * flat(ad, begin, end);
+      return flat(r, begin, end).squaredNorm();
     });
     if (residual_norm2 < threshold) return true;
     const double rz_old = rz;
     rz = precondition();
     const double beta = rz / rz_old;
     for_blocks(n, [&](long begin, long end) {
-      columns(d, begin, end) = columns(z, begin, end) + beta * columns(d, begin, end);
+      flat(d, begin, end) = flat(z, begin, end) + beta * flat(d, begin, end);
     });
   }
   return std::sqrt(residual_norm2 / b_norm2) <= tolerance;
