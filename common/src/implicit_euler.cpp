@@ -13,13 +13,14 @@
 //   clamp_compressed): then K is positive semi-definite, A positive definite, and CG applies.
 // - CG never sees A as a matrix: each spring's 2×2 block S = hb I + h²B (B = stiffness_block) is
 //   computed once a step, and A x = M x + Σ_springs S (x_p − x_q), added to p and taken from q.
-//   That product reads 3 numbers a spring where a stored sparse A holds 16 entries a spring with
-//   their indices: about 4 times faster, and no matrix to fill. (At the lab's values CG needs a
+//   That product reads 3 numbers and the two ends a spring where a stored sparse A holds 16
+//   entries a spring with their indices: about 4 times faster, and no matrix to fill. (At the lab's values CG needs a
 //   few iterations, so the step costs a handful of force evaluations; see
 //   tests/benchmarks/README.md.) The sparse matrix is built only for the LDLᵀ fallback.
-// - On two threads (parallel.hpp) every pass is split by particles: each particle gathers its
-//   springs' terms, in the springs' order, where one thread scatters each spring's to both ends.
-//   The same additions in the same order: the same bits for any thread count.
+// - On two threads (parallel.hpp) the work per spring is split by springs and the rest by
+//   particles: each particle gathers its springs' terms, in the springs' order, where one thread
+//   scatters each spring's to both ends. The same additions in the same order: the same bits for
+//   any thread count.
 // - Pinned particles have no unknowns: their Δv is held at zero in every CG vector (A x is
 //   zeroed there, and so is the preconditioner), so they stay exactly where they are.
 #include "integrators.hpp"

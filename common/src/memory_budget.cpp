@@ -145,8 +145,8 @@ double estimated_bytes(const SceneParameters& p) {
   // Measured (max RSS of springlab-run, task5, about 6 springs a particle): RK4 and explicit
   // Euler 0.62 KiB a particle at 200x200 (estimate 0.73), 0.52 at 1000x1000 (0.75); Verlet
   // 0.51 at 1000x1000 (0.72); velocity Verlet 0.95 at 200x200 (0.97); implicit Euler with CG
-  // alone 1.14 (300x300: 103 MiB before its per-spring pulls and spring lists, 32 B a spring,
-  // estimate 115). High rather than low.
+  // alone 1.17 at 300x300 on two threads (103 MiB, estimate 115; 95 MiB on one). High rather
+  // than low.
   double bytes =
       8 * mib + particles * (136 + integrator_bytes_per_particle(p.integrator)) + springs * 80;
   if (p.integrator == "velocity-verlet") bytes += 16 * springs;  // its dampers
