@@ -311,25 +311,31 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
       }
     }
     // No later row has a spring ending on this one: finish it while it is in the cache.
-    if (row >= first_row)
-      finish_row(row, r, v, sums(row), pass_ == Pass::together ? nullptr : springs + width * row,
-                 finish, scratch.springs);
+    if (row >= first_row && !scratch.whole_finish)
+      finish_rows(row, 1, r, v, sums(row),
+                  pass_ == Pass::together ? nullptr : springs + width * row, finish,
+                  scratch.springs);
   }
+  if (scratch.whole_finish)
+    finish_rows(first_row, end_row - first_row, r, v, sums(first_row),
+                pass_ == Pass::together ? nullptr : springs + width * first_row, finish,
+                scratch.springs);
 }
 
-// Each thread writes only its own rows of the acceleration and the wind's memory. f: the row's
-// forces, x and y of each particle in turn; spring_sums: the row's remembered springs' sums to
-// add first, or null. With finish.inverse_mass f is a row of the ring, cleared here for the row
-// that takes its place.
-void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double* __restrict f,
-                            const double* spring_sums, const GridFinish& finish,
-                            double* __restrict scratch) {
-  const long begin = long(row) * cols_;
-  const int width = 2 * cols_;
+// Rows [first_row, first_row + rows) at once: each thread writes only its own rows of the
+// acceleration and the wind's memory. f: the rows' forces, x and y of each particle in turn;
+// spring_sums: their remembered springs' sums to add first, or null. With finish.inverse_mass
+// f is cleared (a row of the ring, ready for the row that takes its place). scratch: 2 doubles
+// a particle, free.
+void GridForces::finish_rows(int first_row, int rows, const Vectors& r, const Vectors& v,
+                             double* __restrict f, const double* spring_sums,
+                             const GridFinish& finish, double* __restrict scratch) {
+  const long begin = long(first_row) * cols_;
+  const int count = rows * cols_, width = 2 * count;  // particles, numbers
   const double* vr = v.data() + 2 * begin;
-  const double* w = nullptr;                // the row's wind velocities
-  if (finish.wind && !remember_springs_) {  // new positions every call: w for this row only
-    finish.wind->velocities(finish.time, r.data() + 2 * begin, cols_, scratch);
+  const double* w = nullptr;                // the rows' wind velocities
+  if (finish.wind && !remember_springs_) {  // new positions every call: w for these rows only
+    finish.wind->velocities(finish.time, r.data() + 2 * begin, count, scratch);
     w = scratch;
   } else if (finish.wind) {
     const double* rr = r.data() + 2 * begin;
@@ -338,7 +344,7 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
     if (finish.time != wind_time_ ||
         std::memcmp(remembered, rr, sizeof(double) * std::size_t(width)) != 0) {
       std::copy(rr, rr + width, remembered);
-      finish.wind->velocities(finish.time, rr, cols_, remembered_w);
+      finish.wind->velocities(finish.time, rr, count, remembered_w);
     }
     w = remembered_w;
   }
@@ -357,7 +363,7 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
     if (finish.gravity) {
       const double gx = finish.gravity->x(), gy = finish.gravity->y();
       const double* mass = finish.mass->data() + begin;
-      for (int j = 0; j < cols_; ++j) {
+      for (int j = 0; j < count; ++j) {
         const double mj = m > 0.0 ? m : mass[j];
         f[2 * j] += mj * gx;  // (5.2)
         f[2 * j + 1] += mj * gy;
@@ -366,7 +372,7 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
     if (w) add_drag(finish.wind->drag(), w, vr, width, f);
     if (!a) return;
     const double* inverse_mass = finish.inverse_mass->data() + begin;
-    for (int j = 0; j < cols_; ++j) {
+    for (int j = 0; j < count; ++j) {
       a[2 * j] = f[2 * j] * inverse_mass[j];
       a[2 * j + 1] = f[2 * j + 1] * inverse_mass[j];
     }
@@ -375,7 +381,7 @@ void GridForces::finish_row(int row, const Vectors& r, const Vectors& v, double*
   if (finish.pinned) {
     const std::vector<int>& pins = *finish.pinned;
     for (auto pin = std::lower_bound(pins.begin(), pins.end(), begin);
-         pin != pins.end() && *pin < begin + cols_; ++pin)
+         pin != pins.end() && *pin < begin + count; ++pin)
       a[2 * (*pin - begin)] = a[2 * (*pin - begin) + 1] = 0.0;
   }
 }
@@ -407,9 +413,16 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     ++damper_passes_;
   }
   if (pass_ != Pass::dampers_only) ++spring_passes_;
+  // A small grid (one thread, forces within 40 kB) is finished in one pass at the end, its sums
+  // in force: for 100 particles, calls and set-up per row would cost more than the pass.
+  const bool whole_finish = finish.inverse_mass && n < parallel_particles;
+  if (whole_finish) force.resize(2, n);
   const std::size_t row = 2 * std::size_t(cols_);
-  const std::size_t ring = finish.inverse_mass ? row * std::size_t(deepest_ + 1) : 0;
-  const std::size_t each = 2 * row + ring;  // a thread's springs, dampers and ring
+  const std::size_t ring =
+      finish.inverse_mass && !whole_finish ? row * std::size_t(deepest_ + 1) : 0;
+  // A thread's springs (one row, or the whole grid's wind when finished whole), dampers, ring.
+  const std::size_t springs = whole_finish ? 2 * std::size_t(n) : row;
+  const std::size_t each = springs + row + ring;
   buffers_.resize(std::size_t(threads) * each);
   if (finish.wind && remember_springs_ &&
       (wind_position_.cols() != n || finish.wind != wind_field_)) {
@@ -422,7 +435,7 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     const auto [first_row, end_row] = rows_of(t, granted, rows_);
     double* mine = buffers_.data() + std::size_t(t) * each;
     compute_rows(first_row, end_row, r, v, force, finish,
-                 {mine, mine + row, ring > 0 ? mine + 2 * row : nullptr});
+                 {mine, mine + springs, ring > 0 ? mine + springs + row : nullptr, whole_finish});
   };
   if (threads == 1) {  // without OpenMP's runtime: a small grid's call costs as little as can be
     rows_of_thread(0, 1);

@@ -44,7 +44,8 @@ class GridForces {
   static std::optional<GridForces> of(const std::vector<Spring>& springs, int rows, int cols);
 
   /// force = every spring's and damper's force on each particle, N (resized to 2 × rows·cols);
-  /// then `finish`. With finish.inverse_mass, only the acceleration is written, not force. Uses
+  /// then `finish`. With finish.inverse_mass, only the acceleration is meant: force is then
+  /// scratch (untouched, or zeros below `parallel_particles` particles). Uses
   /// thread_count() threads from `parallel_particles` particles up. Throws InvalidParameter when r
   /// or v do not hold rows·cols particles.
   void compute(const Vectors& r, const Vectors& v, Vectors& force, const GridFinish& finish = {});
@@ -95,13 +96,14 @@ class GridForces {
   GridForces(std::vector<Link> links, int rows, int cols);
   struct Scratch {  // a thread's: one row of a link's spring and damper forces, the ring
     double *springs, *dampers, *ring;
+    bool whole_finish;  // the rows finished in one pass at the end, their sums in force
   };
   enum class Pass { together, apart, dampers_only };
   void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
                     const GridFinish& finish, const Scratch& scratch);
-  // scratch: a free row of 2·cols doubles (the thread's spring buffer, done with for this row).
-  void finish_row(int row, const Vectors& r, const Vectors& v, double* f, const double* spring_sums,
-                  const GridFinish& finish, double* scratch);
+  // scratch: 2 free doubles a particle (the thread's spring buffer, done with for these rows).
+  void finish_rows(int first_row, int rows, const Vectors& r, const Vectors& v, double* f,
+                   const double* spring_sums, const GridFinish& finish, double* scratch);
 
   std::vector<Link> links_;
   int rows_ = 0, cols_ = 0, deepest_ = 0;  // deepest_: the largest di
