@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <limits>
+#include <optional>
 
 using namespace springlab;
 using namespace springlab::testing;
@@ -349,4 +350,36 @@ TEST_CASE("Fast path: particles of different masses take the per-particle arrays
   // The heavier particle falls with g all the same: its own mass is used for both m g and 1/m.
   CHECK(std::abs(fast(1, 10) - plain(1, 10)) <= 1e-12);
   CHECK(plain.col(10).norm() > 0.0);
+}
+
+TEST_CASE("Fast path: one mass for all reads no mass array, for forces and accelerations alike",
+          "[fast]") {
+  SceneParameters p = task_scene(5);
+  p.rows = 6;
+  p.cols = 7;
+  Scene scene = build_scene(p, implementation());
+  randomise(scene.particles, 0.3 * p.spacing, 2.0, 5);
+  std::optional<GridForces> grid = GridForces::of(scene.springs, p.rows, p.cols);
+  REQUIRE(grid);
+  const Particles& s = scene.particles;
+  const double m = s.mass[0];
+  REQUIRE((s.mass.array() == m).all());
+  const Vec2 g = p.gravity.acceleration;
+  REQUIRE(g.norm() > 0.0);
+  // With the arrays: m_i g per particle, then 1/m_i.
+  const Eigen::VectorXd inverse = s.mass.cwiseInverse();
+  Vectors with_arrays, shared, scratch, a_arrays, a_shared;
+  grid->compute(s.position, s.velocity, with_arrays, {.gravity = &g, .mass = &s.mass});
+  // same_mass alone: `mass` and `inverse_mass` are left null, and must not be read.
+  grid->compute(s.position, s.velocity, shared, {.gravity = &g, .same_mass = m});
+  CHECK((shared.array() == with_arrays.array()).all());
+  grid->compute(
+      s.position, s.velocity, scratch,
+      {.gravity = &g, .mass = &s.mass, .inverse_mass = &inverse, .acceleration = &a_arrays});
+  grid->compute(
+      s.position, s.velocity, scratch,
+      {.gravity = &g, .inverse_mass = &inverse, .same_mass = m, .acceleration = &a_shared});
+  CHECK((a_shared.array() == a_arrays.array()).all());
+  // Not vacuous: gravity is in the result.
+  CHECK(with_arrays.row(1).sum() < 0.0);
 }

@@ -362,7 +362,7 @@ void GridForces::finish_rows(int first_row, int rows, const Vectors& r, const Ve
         f[e] = spring_sums[e] + f[e];
     if (finish.gravity) {
       const double gx = finish.gravity->x(), gy = finish.gravity->y();
-      const double* mass = finish.mass->data() + begin;
+      const double* mass = m > 0.0 ? nullptr : finish.mass->data() + begin;
       for (int j = 0; j < count; ++j) {
         const double mj = m > 0.0 ? m : mass[j];
         f[2 * j] += mj * gx;  // (5.2)
@@ -443,6 +443,8 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
 #ifdef _OPENMP
 #pragma omp parallel num_threads(threads)
     rows_of_thread(omp_get_thread_num(), omp_get_num_threads());
+#else
+    rows_of_thread(0, 1);  // unreachable: thread_count() is 1 without OpenMP
 #endif
   }
   if (pass_ == Pass::apart) springs_position_ = r;  // the sums above are r's

@@ -14,8 +14,8 @@
 // - CG never sees A as a matrix: each spring's 2×2 block S = hb I + h²B (B = stiffness_block) is
 //   computed once a step, and A x = M x + Σ_springs S (x_p − x_q), added to p and taken from q.
 //   That product reads 3 numbers and the two ends a spring where a stored sparse A holds 16
-//   entries a spring with their indices: about 4 times faster, and no matrix to fill. (At the lab's values CG needs a
-//   few iterations, so the step costs a handful of force evaluations; see
+//   entries a spring with their indices: about 4 times faster, and no matrix to fill. (At the lab's
+//   values CG needs a few iterations, so the step costs a handful of force evaluations; see
 //   tests/benchmarks/README.md.) The sparse matrix is built only for the LDLᵀ fallback.
 // - On two threads (parallel.hpp) the work per spring is split by springs and the rest by
 //   particles: each particle gathers its springs' terms, in the springs' order, where one thread
@@ -79,8 +79,7 @@ class ImplicitEuler final : public Integrator {
   mutable Vectors per_spring_;
   // Each particle's springs in the springs' order, spring s as 2s where the particle is its
   // first end and 2s + 1 where it is its second: incident_[incident_start_[i] …
-  // incident_start_[i + 1]) are particle i's. (32 bits: a scene's memory holds far fewer than
-  // 2^31 springs, at 40 B each.)
+  // incident_start_[i + 1]) are particle i's (32 bits: prepare refuses 2^31 springs or more).
   std::vector<long> incident_start_;
   std::vector<std::uint32_t> incident_;
   Vectors inverse_diagonal_;   // Jacobi preconditioner: 1 / A's diagonal, 0 where pinned
@@ -113,6 +112,11 @@ void ImplicitEuler::prepare(const Model& model) {
     ++incident_start_[std::size_t(s.p) + 1], ++incident_start_[std::size_t(s.q) + 1];
   for (std::size_t i = 0; i < std::size_t(n); ++i)
     incident_start_[i + 1] += incident_start_[i];
+  // Codes 2s and 2s + 1 in 32 bits: no scene that fits in memory comes near, but say so if one
+  // does.
+  if (model.springs.size() >= (std::size_t(1) << 31))
+    throw InvalidParameter("springs", std::to_string(model.springs.size()),
+                           "fewer than 2^31 for implicit-euler");
   incident_.resize(2 * model.springs.size());
   std::vector<long> next(incident_start_.begin(), incident_start_.end() - 1);
   for (std::size_t s = 0; s < model.springs.size(); ++s) {

@@ -316,7 +316,11 @@ void ProcessPool::run() {
 }
 
 std::vector<std::string> plain_environment() {
-  return {"PATH=/usr/local/bin:/usr/bin:/bin", "LANG=C.UTF-8", "LC_ALL=C.UTF-8"};
+  // OMP_NUM_THREADS=1: the grader already runs several submissions at once, and a grading
+  // process's CPU-time limit then means the same on a 2-core laptop as on a 64-core server (the
+  // kit's large scenes would otherwise start a thread per core, each with its stack).
+  return {"PATH=/usr/local/bin:/usr/bin:/bin", "LANG=C.UTF-8", "LC_ALL=C.UTF-8",
+          "OMP_NUM_THREADS=1"};
 }
 
 }  // namespace springlab::grader
