@@ -383,3 +383,45 @@ TEST_CASE("Fast path: one mass for all reads no mass array, for forces and accel
   // Not vacuous: gravity is in the result.
   CHECK(with_arrays.row(1).sum() < 0.0);
 }
+
+TEST_CASE("Fast path: a row's end in one pass gives the bits of a pass each, as a replay adds them",
+          "[fast]") {
+  // A replay of a fast-path run (divergence.hpp) takes the forces alone from the fast path, then
+  // adds m g, then the wind's drag, then divides by m, a pass each, and must follow the run to
+  // the bit. 7 x 9 is finished in one pass over all rows, 61 x 63 row by row through the ring;
+  // with remembered springs (Verlet) their sums are added first.
+  for (const int rows : {7, 61}) {
+    for (const bool remember : {false, true}) {
+      INFO(rows << " rows, springs remembered: " << remember);
+      SceneParameters p = task_scene(5);
+      p.rows = rows;
+      p.cols = rows + 2;
+      REQUIRE(p.wind.enabled);
+      Scene scene = build_scene(p, implementation());
+      randomise(scene.particles, 0.3 * p.spacing, 2.0, 11);
+      const Particles& s = scene.particles;
+      GridForces grid = *GridForces::of(scene.springs, p.rows, p.cols);
+      grid.remember_springs(remember);
+      const WindField wind(p.wind);
+      const double t = 0.37, m = s.mass[0];
+      const Vec2 g = p.gravity.acceleration;
+      const Eigen::VectorXd inverse = s.mass.cwiseInverse();
+      Vectors force, scratch, fused;
+      const GridFinish finish{.gravity = &g,
+                              .mass = &s.mass,
+                              .wind = &wind,
+                              .time = t,
+                              .inverse_mass = &inverse,
+                              .same_mass = m,
+                              .acceleration = &fused};
+      grid.compute(s.position, s.velocity, scratch, finish);
+      if (remember) grid.compute(s.position, s.velocity, scratch, finish);  // springs reused
+      grid.compute(s.position, s.velocity, force);
+      force += m * g.replicate(1, force.cols());  // (5.2), as add_gravity: f + m g
+      grid.add_wind(wind, t, s.position, s.velocity, force);
+      const Vectors passes = force * inverse.asDiagonal();
+      CHECK((fused.array() == passes.array()).all());
+      CHECK(fused.cwiseAbs().maxCoeff() > 0.0);
+    }
+  }
+}
