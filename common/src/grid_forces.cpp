@@ -268,6 +268,9 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
     std::fill(scratch.ring, scratch.ring + width * slots, 0.0);
   else
     std::fill(force.data() + width * first_row, force.data() + width * end_row, 0.0);
+  // Only the acceleration wanted but no ring: a small grid, its sums in force, finished in one
+  // pass at the end (compute).
+  const bool whole_finish = finish.inverse_mass && !scratch.ring;
   double* springs = spring_sums_.data();
   if (pass_ == Pass::apart) std::fill(springs + width * first_row, springs + width * end_row, 0.0);
   // Adds a row of first ends' forces to the rows this thread owns: +f on p, −f on q (2.4).
@@ -311,12 +314,12 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
       }
     }
     // No later row has a spring ending on this one: finish it while it is in the cache.
-    if (row >= first_row && !scratch.whole_finish)
+    if (row >= first_row && !whole_finish)
       finish_rows(row, 1, r, v, sums(row),
                   pass_ == Pass::together ? nullptr : springs + width * row, finish,
                   scratch.springs);
   }
-  if (scratch.whole_finish)
+  if (whole_finish)
     finish_rows(first_row, end_row - first_row, r, v, sums(first_row),
                 pass_ == Pass::together ? nullptr : springs + width * first_row, finish,
                 scratch.springs);
@@ -325,8 +328,8 @@ void GridForces::compute_rows(int first_row, int end_row, const Vectors& r, cons
 // Rows [first_row, first_row + rows) at once: each thread writes only its own rows of the
 // acceleration and the wind's memory. f: the rows' forces, x and y of each particle in turn;
 // spring_sums: their remembered springs' sums to add first, or null. With finish.inverse_mass
-// f is cleared (a row of the ring, ready for the row that takes its place). scratch: 2 doubles
-// a particle, free.
+// f is cleared (in the ring, for the row that takes its place). scratch: 2 doubles a particle,
+// free.
 void GridForces::finish_rows(int first_row, int rows, const Vectors& r, const Vectors& v,
                              double* __restrict f, const double* spring_sums,
                              const GridFinish& finish, double* __restrict scratch) {
@@ -435,7 +438,7 @@ void GridForces::compute(const Vectors& r, const Vectors& v, Vectors& force,
     const auto [first_row, end_row] = rows_of(t, granted, rows_);
     double* mine = buffers_.data() + std::size_t(t) * each;
     compute_rows(first_row, end_row, r, v, force, finish,
-                 {mine, mine + springs, ring > 0 ? mine + springs + row : nullptr, whole_finish});
+                 {mine, mine + springs, ring > 0 ? mine + springs + row : nullptr});
   };
   if (threads == 1) {  // without OpenMP's runtime: a small grid's call costs as little as can be
     rows_of_thread(0, 1);

@@ -66,6 +66,9 @@ class ImplicitEuler final : public Integrator {
   // bit, without a branch the processor could not predict.)
   template <class Each>
   void for_springs_of(long i, Each&& each) const;
+  // per_spring_.col(s) = vector_of(s) for each of `springs` springs, split over threads.
+  template <class VectorOf>
+  void fill_per_spring(long springs, VectorOf&& vector_of) const;
   Vectors solve_directly(const Model& model, const Vectors& r, double h, const Vectors& b);
   void build_pattern(const Model& model);
   Eigen::Index slot(int row, int col) const;
@@ -126,6 +129,15 @@ void ImplicitEuler::prepare(const Model& model) {
   restart();
 }
 
+template <class VectorOf>
+void ImplicitEuler::fill_per_spring(long springs, VectorOf&& vector_of) const {
+  per_spring_.resize(2, springs);
+  for_blocks(springs, [&](long begin, long end) {
+    for (long s = begin; s < end; ++s)
+      per_spring_.col(s) = vector_of(s);
+  });
+}
+
 template <class Each>
 void ImplicitEuler::for_springs_of(long i, Each&& each) const {
   for (long k = incident_start_[std::size_t(i)]; k < incident_start_[std::size_t(i) + 1]; ++k) {
@@ -159,11 +171,7 @@ void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vector
   stiffness_times_v_.setZero(2, n);
   Vectors diagonal = model.mass.transpose().replicate<2, 1>();
   if (splits(n)) {
-    per_spring_.resize(2, springs);
-    for_blocks(springs, [&](long begin, long end) {
-      for (long i = begin; i < end; ++i)
-        per_spring_.col(i) = linearise_spring(i);
-    });
+    fill_per_spring(springs, linearise_spring);
     for_blocks(n, [&](long begin, long end) {
       for (long i = begin; i < end; ++i) {
         for_springs_of(i, [&](long s, double sign) {
@@ -198,12 +206,7 @@ void ImplicitEuler::multiply(const Model& model, const Vectors& x, Vectors& prod
   const long n = x.cols();
   product.resize(2, n);
   if (splits(n)) {  // each spring's term once, then each particle gathers its springs'
-    const long springs = long(model.springs.size());
-    per_spring_.resize(2, springs);
-    for_blocks(springs, [&](long begin, long end) {
-      for (long s = begin; s < end; ++s)
-        per_spring_.col(s) = term(s);
-    });
+    fill_per_spring(long(model.springs.size()), term);
     for_blocks(n, [&](long begin, long end) {
       for (long i = begin; i < end; ++i) {
         Vec2 sum = x.col(i) * model.mass[i];

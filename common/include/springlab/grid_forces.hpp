@@ -96,7 +96,6 @@ class GridForces {
   GridForces(std::vector<Link> links, int rows, int cols);
   struct Scratch {  // a thread's: one row of a link's spring and damper forces, the ring
     double *springs, *dampers, *ring;
-    bool whole_finish;  // the rows finished in one pass at the end, their sums in force
   };
   enum class Pass { together, apart, dampers_only };
   void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
