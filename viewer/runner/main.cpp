@@ -5,9 +5,11 @@
 #include "runner/csv.hpp"
 #include "springlab/cli_values.hpp"
 #include "springlab/errors.hpp"
+#include "springlab/grid_forces.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/memory_budget.hpp"
+#include "springlab/parallel.hpp"
 #include "springlab/progress.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/scene_text.hpp"
@@ -119,6 +121,19 @@ long steps_for(const SceneParameters& p) {
   return long(std::ceil(p.duration / p.step - 1e-9));
 }
 
+// ", 0.61 x real time (forces on 2 threads)": simulated seconds per second of wall time, and the
+// threads the force code used (OMP_NUM_THREADS; one below the fast path's parallel size).
+std::string real_time(const Simulation& sim, double seconds) {
+  if (!(seconds > 0.0)) return "";
+  const bool parallel =
+      sim.fast_forces() && sim.particles().size() >= GridForces::parallel_particles;
+  const int threads = parallel ? thread_count() : 1;
+  std::ostringstream text;
+  text << ", " << std::setprecision(3) << sim.time() / seconds << " x real time (forces on "
+       << counted(std::size_t(threads), "thread") << ")";
+  return text.str();
+}
+
 void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& start,
                    double seconds) {
   const Diagnostics end = sim.diagnostics();
@@ -133,7 +148,8 @@ void print_summary(std::ostream& out, const Simulation& sim, const Diagnostics& 
       << "energy " << start.total() << " J -> " << end.total() << " J ("
       << energy_parts(end, p.gravity.enabled) << "); momentum (" << end.momentum.x() << ", "
       << end.momentum.y() << ") kg*m/s\n"
-      << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time\n"
+      << sim.force_evaluations() << " force evaluations in " << seconds << " s of wall time"
+      << real_time(sim, seconds) << "\n"
       << "memory: " << peak_resident_mib() << " MiB at most in use (resident), "
       << mebibytes_text(estimated_bytes(p)) << " estimated before the run"
       << (factorised ? " (without the factorisation implicit-euler's fallback made)" : "") << '\n';
