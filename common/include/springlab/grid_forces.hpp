@@ -100,6 +100,8 @@ class GridForces {
   enum class Pass { together, apart, dampers_only };
   void compute_rows(int first_row, int end_row, const Vectors& r, const Vectors& v, Vectors& force,
                     const GridFinish& finish, const Scratch& scratch);
+  void compute_whole(const Vectors& r, const Vectors& v, Vectors& force, const GridFinish& finish,
+                     double* buffer);
   // scratch: 2 free doubles a particle (the thread's spring buffer, done with for these rows).
   void finish_rows(int first_row, int rows, const Vectors& r, const Vectors& v, double* f,
                    const double* spring_sums, const GridFinish& finish, double* scratch);
