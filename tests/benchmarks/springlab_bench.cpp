@@ -429,13 +429,20 @@ void register_all() {
   const std::vector<std::string> methods = integrator_names();
   for (const int n : {10, 30, 100, 300, 1000}) {
     const auto add = [n](const std::string& name, auto function) {
-      benchmark::RegisterBenchmark((name + "/" + std::to_string(n)).c_str(), function, n)
+      return benchmark::RegisterBenchmark((name + "/" + std::to_string(n)).c_str(), function, n)
           ->Unit(benchmark::kMicrosecond);
+    };
+    // A 1000×1000 model row's iteration takes about 45 ms: at 0.2 s only three pairs of batches
+    // would decide speedup_2_threads, and this machine's vCPUs slow one now and then for tens of
+    // ms. At least 2 s (about fifty pairs) whatever --benchmark_min_time says.
+    const auto add_model = [&](const std::string& name, auto function) {
+      benchmark::internal::Benchmark* row = add(name, function);
+      if (n >= 1000) row->MinTime(2.0);
     };
     add("force/limit", force_limit);
     add("force/springs", force_springs);
     add("force/fast", force_fast);
-    add("force/model", [](benchmark::State& s, int m) { force_model(s, m, false); });
+    add_model("force/model", [](benchmark::State& s, int m) { force_model(s, m, false); });
     for (const std::string& method : methods) {
       // The implicit step's matrix at 1000×1000 (2 million unknowns, ~100 million entries and
       // their slots) would take several GB: measured up to 300×300.
@@ -443,9 +450,9 @@ void register_all() {
       add("step/" + method, [method](benchmark::State& s, int m) { step(s, m, method); });
     }
     add("rk4-vs-odeint", rk4_vs_odeint);
-    add("force/model+wind", [](benchmark::State& s, int m) { force_model(s, m, true); });
-    add("force/model+wind-repeat",
-        [](benchmark::State& s, int m) { force_model(s, m, true, true); });
+    add_model("force/model+wind", [](benchmark::State& s, int m) { force_model(s, m, true); });
+    add_model("force/model+wind-repeat",
+              [](benchmark::State& s, int m) { force_model(s, m, true, true); });
   }
 }
 
