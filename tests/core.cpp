@@ -2,8 +2,10 @@
 // theory. Runs against the reference only (tag [core]); students never edit any of it.
 #include "lab_testing.hpp"
 #include "springlab/errors.hpp"
+#include "springlab/grid_forces.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/memory_budget.hpp"
+#include "springlab/parallel.hpp"
 #include "springlab/scene_file.hpp"
 #include "springlab/stability.hpp"
 #include "springlab/this_implementation.hpp"
@@ -326,6 +328,27 @@ TEST_CASE("Memory guard: each integrator's estimate against an injected limit", 
   }
   p.rows = p.cols = 20;
   CHECK_NOTHROW(check_memory(p, limit));
+}
+
+TEST_CASE("Memory guard: the threads' stacks count from the fast path's size up",
+          "[core][memory]") {
+  // Each thread beyond the first maps a stack that `ulimit -v` counts, touched or not.
+  const int threads_before = thread_count();
+  SceneParameters p = task_scene(5);
+  const auto extra_for_three_threads = [&](int rows) {
+    p.rows = p.cols = rows;
+    set_thread_count(1);
+    const double one = estimated_bytes(p);
+    set_thread_count(3);
+    const double three = estimated_bytes(p);
+    set_thread_count(threads_before);
+    return three - one;
+  };
+  REQUIRE(49 * 49 < GridForces::parallel_particles);
+  REQUIRE(50 * 50 >= GridForces::parallel_particles);
+  CHECK(extra_for_three_threads(49) == 0.0);  // one thread below the fast path's size
+  // Two stacks and their guard pages: at least glibc's smallest stack (16 KiB) each.
+  if (parallel_built()) CHECK(extra_for_three_threads(50) >= 2 * (16.0 + 4.0) * 1024);
 }
 
 TEST_CASE("Memory guard: the process's limit is found", "[core][memory]") {

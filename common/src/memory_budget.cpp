@@ -1,12 +1,17 @@
 #include "springlab/memory_budget.hpp"
 
 #include "springlab/errors.hpp"
+#include "springlab/grid_forces.hpp"
+#include "springlab/parallel.hpp"
 
+#include <pthread.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -45,6 +50,29 @@ double integrator_bytes_per_particle(const std::string& integrator) {
 // up, the factorisation runs), whole process: 7.8 KiB a particle at 100x100 (78 MB), 7.8 at
 // 200x200 (312 MB), 9.2 at 300x300 (846 MB); 8.4 at 400x400 in issue 13. Modelled as
 // 7 + 0.35 log2(n/1e4) KiB a particle on top of the rest (300x300: 850 MB estimated).
+// The address space of one more thread: its stack as glibc gives it to OpenMP's threads (the
+// process's default, from `ulimit -s`; OMP_STACKSIZE when set) and a guard page. `ulimit -v`
+// counts it whole, touched or not: 300x300 implicit Euler needed 12 MiB more of it on 4
+// threads than on 2, 45 MiB more on 8.
+double thread_stack_bytes() {
+  double bytes = 8 * mib;
+  pthread_attr_t attr;
+  if (pthread_getattr_default_np(&attr) == 0) {
+    std::size_t size = 0;
+    if (pthread_attr_getstacksize(&attr, &size) == 0 && size > 0) bytes = double(size);
+    pthread_attr_destroy(&attr);
+  }
+  if (const char* text = std::getenv("OMP_STACKSIZE"); text != nullptr && *text != '\0') {
+    // OpenMP's syntax: a number, in KiB unless followed by B, K, M or G.
+    char* end = nullptr;
+    const double value = std::strtod(text, &end);
+    const char unit = end != nullptr ? char(std::toupper(static_cast<unsigned char>(*end))) : 'K';
+    const double scale = unit == 'B' ? 1.0 : unit == 'M' ? mib : unit == 'G' ? 1024 * mib : kib;
+    if (std::isfinite(value) && value > 0) bytes = value * scale;
+  }
+  return bytes + 4 * kib;
+}
+
 }  // namespace
 
 double factorisation_bytes(double particles) {
@@ -153,6 +181,10 @@ double estimated_bytes(const SceneParameters& p) {
   // Implicit Euler's blocks S with their ends (32 B), a vector per spring for its gathers on two
   // threads (16 B), and each spring twice in the particles' lists (8 B).
   if (p.integrator == "implicit-euler") bytes += 56 * springs;
+  // From the fast path's size up, the kit's work runs on thread_count() threads: the others'
+  // stacks (address space, which `ulimit -v` counts; little of it is ever resident).
+  if (particles >= GridForces::parallel_particles)
+    bytes += (thread_count() - 1) * thread_stack_bytes();
   return bytes;
 }
 

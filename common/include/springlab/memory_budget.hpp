@@ -25,7 +25,8 @@ double address_space_in_use();
 /// About how many bytes a run of scene p with p.integrator needs at its peak: the particles,
 /// the springs, the simulation's buffers and the integrator's (for implicit Euler, its
 /// conjugate gradients: the fallback's factorisation, needed only when they fail, checks its
-/// own memory when it comes, see factorisation_bytes). From the data structures, checked against
+/// own memory when it comes, see factorisation_bytes), and from 2500 particles the stacks of the
+/// thread_count() − 1 threads that share the work. From the data structures, checked against
 /// the maximum resident size of springlab-run (memory_budget.cpp).
 double estimated_bytes(const SceneParameters& p);
 
