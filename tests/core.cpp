@@ -11,9 +11,13 @@
 #include "springlab/this_implementation.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <string>
+#include <utility>
+#include <vector>
 
 using namespace springlab;
 using namespace springlab::testing;
@@ -314,7 +318,7 @@ TEST_CASE("Memory guard: each integrator's estimate against an injected limit", 
   }
   // The fallback's factorisation fills in: more than A's own 2x2 blocks, 4 doubles a spring.
   CHECK(factorisation_bytes(particles) > springs * 4 * 8);
-  const MemoryLimit limit{400.0 * 1024 * 1024, "ulimit -v"};
+  const MemoryLimit limit{400.0 * 1024 * 1024, "ulimit -v", 400.0 * 1024 * 1024, "ulimit -v"};
   p.rows = p.cols = 1000;
   p.integrator = "explicit-euler";
   try {
@@ -330,25 +334,77 @@ TEST_CASE("Memory guard: each integrator's estimate against an injected limit", 
   CHECK_NOTHROW(check_memory(p, limit));
 }
 
-TEST_CASE("Memory guard: the threads' stacks count from the fast path's size up",
+TEST_CASE("Memory guard: the threads' stacks count against the address space only",
           "[core][memory]") {
-  // Each thread beyond the first maps a stack that `ulimit -v` counts, touched or not.
+  // Each thread beyond the first maps a stack that ulimit -v counts whole, touched or not; little
+  // of it is resident, so physical memory and cgroup limits do not count it.
   const int threads_before = thread_count();
   SceneParameters p = task_scene(5);
-  const auto extra_for_three_threads = [&](int rows) {
-    p.rows = p.cols = rows;
-    set_thread_count(1);
-    const double one = estimated_bytes(p);
-    set_thread_count(3);
-    const double three = estimated_bytes(p);
-    set_thread_count(threads_before);
-    return three - one;
-  };
-  REQUIRE(49 * 49 < GridForces::parallel_particles);
+  p.rows = p.cols = 50;
+  REQUIRE(49 * 50 < GridForces::parallel_particles);
   REQUIRE(50 * 50 >= GridForces::parallel_particles);
-  CHECK(extra_for_three_threads(49) == 0.0);  // one thread below the fast path's size
-  // Two stacks and their guard pages: at least glibc's smallest stack (16 KiB) each.
-  if (parallel_built()) CHECK(extra_for_three_threads(50) >= 2 * (16.0 + 4.0) * 1024);
+  set_thread_count(3);
+  const double stacks = thread_stack_bytes(p);
+  const double needed = estimated_bytes(p);
+  if (parallel_built()) {
+    CHECK(stacks == 2 * one_thread_stack_bytes());
+    // Room for the scene but not for the stacks: refused, saying so.
+    MemoryLimit limit{needed + 1e6, "ulimit -v", needed + 0.5 * stacks, "ulimit -v"};
+    try {
+      check_memory(p, limit);
+      FAIL("two threads' stacks were left out of the address space");
+    } catch (const InvalidParameter& error) {
+      CHECK_THAT(error.what(), Contains("of address space for the stacks of its 2 other threads"));
+      CHECK_THAT(error.what(), Contains("set OMP_NUM_THREADS=1"));
+    }
+    // The same room as physical memory or a cgroup's: the stacks are not resident.
+    limit.mappable = std::numeric_limits<double>::infinity();
+    CHECK_NOTHROW(check_memory(p, limit));
+  }
+  p.rows = 49;  // one thread below the fast path's size
+  CHECK(thread_stack_bytes(p) == 0.0);
+  set_thread_count(1);
+  p.rows = 50;
+  CHECK(thread_stack_bytes(p) == 0.0);
+  set_thread_count(threads_before);
+}
+
+TEST_CASE("Memory guard: a thread's stack is read from OMP_STACKSIZE as libgomp reads it",
+          "[core][memory]") {
+  const char* saved_omp = std::getenv("OMP_STACKSIZE");
+  const char* saved_gomp = std::getenv("GOMP_STACKSIZE");
+  const std::string omp = saved_omp ? saved_omp : "", gomp = saved_gomp ? saved_gomp : "";
+  unsetenv("OMP_STACKSIZE");
+  unsetenv("GOMP_STACKSIZE");
+  const double guard = 4 * 1024.0, default_stack = one_thread_stack_bytes();
+  CHECK(default_stack >= 16 * 1024.0 + guard);  // glibc's smallest stack at least
+  const double k = 1024.0, m = k * k;
+  const std::vector<std::pair<const char*, double>> cases = {{"64 M", 64 * m},
+                                                             {"64m", 64 * m},
+                                                             {" 2G ", 2048 * m},
+                                                             {"512", 512 * k},
+                                                             {"100 k", 100 * k},
+                                                             {"+8M", 8 * m},
+                                                             {"65536B", 65536},
+                                                             {"1e3M", default_stack - guard},
+                                                             {"4MB", default_stack - guard},
+                                                             {"0x10", default_stack - guard},
+                                                             {"-5M", default_stack - guard},
+                                                             {"", default_stack - guard}};
+  for (const auto& [text, bytes] : cases) {
+    CAPTURE(text);
+    setenv("OMP_STACKSIZE", text, 1);
+    CHECK(one_thread_stack_bytes() == bytes + guard);
+  }
+  unsetenv("OMP_STACKSIZE");
+  setenv("GOMP_STACKSIZE", "3M", 1);  // libgomp's own name, read when OMP_STACKSIZE is unset
+  CHECK(one_thread_stack_bytes() == 3 * m + guard);
+  setenv("OMP_STACKSIZE", "5M", 1);
+  CHECK(one_thread_stack_bytes() == 5 * m + guard);
+  unsetenv("OMP_STACKSIZE");
+  unsetenv("GOMP_STACKSIZE");
+  if (saved_omp) setenv("OMP_STACKSIZE", omp.c_str(), 1);
+  if (saved_gomp) setenv("GOMP_STACKSIZE", gomp.c_str(), 1);
 }
 
 TEST_CASE("Memory guard: the process's limit is found", "[core][memory]") {

@@ -14,8 +14,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 namespace springlab {
 namespace {
@@ -50,30 +52,57 @@ double integrator_bytes_per_particle(const std::string& integrator) {
 // up, the factorisation runs), whole process: 7.8 KiB a particle at 100x100 (78 MB), 7.8 at
 // 200x200 (312 MB), 9.2 at 300x300 (846 MB); 8.4 at 400x400 in issue 13. Modelled as
 // 7 + 0.35 log2(n/1e4) KiB a particle on top of the rest (300x300: 850 MB estimated).
-// The address space of one more thread: its stack as glibc gives it to OpenMP's threads (the
-// process's default, from `ulimit -s`; OMP_STACKSIZE when set) and a guard page. `ulimit -v`
-// counts it whole, touched or not: 300x300 implicit Euler needed 12 MiB more of it on 4
-// threads than on 2, 45 MiB more on 8.
-double thread_stack_bytes() {
-  double bytes = 8 * mib;
-  pthread_attr_t attr;
-  if (pthread_getattr_default_np(&attr) == 0) {
-    std::size_t size = 0;
-    if (pthread_attr_getstacksize(&attr, &size) == 0 && size > 0) bytes = double(size);
-    pthread_attr_destroy(&attr);
+// libgomp's reading of a stack size: spaces, a sign, digits, spaces, an optional unit, spaces;
+// bytes, or nothing when the text is not one (libgomp then keeps the default stack).
+std::optional<double> stack_setting(const char* text) {
+  if (text == nullptr) return std::nullopt;
+  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  const char* c = text;
+  while (space(*c))
+    ++c;
+  if (*c == '+') ++c;  // strtoul's sign; a '-' wraps around, and libgomp refuses the result
+  if (!digit(*c)) return std::nullopt;
+  double value = 0.0;
+  for (; digit(*c); ++c)
+    value = 10 * value + (*c - '0');
+  while (space(*c))
+    ++c;
+  double unit = kib;
+  const std::string_view units = "bkmg";
+  if (const auto i = units.find(char(std::tolower(static_cast<unsigned char>(*c))));
+      *c != '\0' && i != std::string_view::npos) {
+    unit = std::pow(1024.0, double(i));
+    ++c;
   }
-  if (const char* text = std::getenv("OMP_STACKSIZE"); text != nullptr && *text != '\0') {
-    // OpenMP's syntax: a number, in KiB unless followed by B, K, M or G.
-    char* end = nullptr;
-    const double value = std::strtod(text, &end);
-    const char unit = end != nullptr ? char(std::toupper(static_cast<unsigned char>(*end))) : 'K';
-    const double scale = unit == 'B' ? 1.0 : unit == 'M' ? mib : unit == 'G' ? 1024 * mib : kib;
-    if (std::isfinite(value) && value > 0) bytes = value * scale;
-  }
-  return bytes + 4 * kib;
+  while (space(*c))
+    ++c;
+  if (*c != '\0' || value == 0.0) return std::nullopt;
+  return value * unit;
 }
 
 }  // namespace
+
+double one_thread_stack_bytes() {
+  std::optional<double> bytes = stack_setting(std::getenv("OMP_STACKSIZE"));
+  if (!bytes) bytes = stack_setting(std::getenv("GOMP_STACKSIZE"));
+  if (!bytes) {
+    bytes = 8 * mib;  // glibc's default when it cannot say
+    pthread_attr_t attr;
+    if (pthread_getattr_default_np(&attr) == 0) {
+      std::size_t size = 0;
+      if (pthread_attr_getstacksize(&attr, &size) == 0 && size > 0) bytes = double(size);
+      pthread_attr_destroy(&attr);
+    }
+  }
+  return *bytes + 4 * kib;
+}
+
+double thread_stack_bytes(const SceneParameters& p) {
+  const double particles = double(p.rows) * double(p.cols);
+  if (particles < GridForces::parallel_particles) return 0.0;
+  return (thread_count() - 1) * one_thread_stack_bytes();
+}
 
 double factorisation_bytes(double particles) {
   return particles * kib * (7.0 + 0.35 * std::max(0.0, std::log2(particles / 1e4)));
@@ -156,13 +185,20 @@ std::string mebibytes_text(double bytes) {
 }
 
 MemoryLimit available_memory() {
-  MemoryLimit best{physical_available(), "physical memory"};
+  MemoryLimit best;
+  best.bytes = physical_available();
+  best.source = "physical memory";
   const auto consider = [&](double bytes, const char* source) {
-    if (bytes < best.bytes) best = {bytes, source};
+    if (bytes < best.bytes) best.bytes = bytes, best.source = source;
   };
-  consider(rlimit_available(RLIMIT_AS, "VmSize"), "ulimit -v");
-  consider(rlimit_available(RLIMIT_DATA, "VmData"), "ulimit -d");
+  const double address_space = rlimit_available(RLIMIT_AS, "VmSize");
+  const double data = rlimit_available(RLIMIT_DATA, "VmData");
+  consider(address_space, "ulimit -v");
+  consider(data, "ulimit -d");
   consider(cgroup_available(), "cgroup");
+  // Since Linux 4.7 ulimit -d counts private writable mappings too, threads' stacks among them.
+  best.mappable = std::min(address_space, data);
+  best.mappable_source = address_space <= data ? "ulimit -v" : "ulimit -d";
   return best;
 }
 
@@ -181,20 +217,26 @@ double estimated_bytes(const SceneParameters& p) {
   // Implicit Euler's blocks S with their ends (32 B), a vector per spring for its gathers on two
   // threads (16 B), and each spring twice in the particles' lists (8 B).
   if (p.integrator == "implicit-euler") bytes += 56 * springs;
-  // From the fast path's size up, the kit's work runs on thread_count() threads: the others'
-  // stacks (address space, which `ulimit -v` counts; little of it is ever resident).
-  if (particles >= GridForces::parallel_particles)
-    bytes += (thread_count() - 1) * thread_stack_bytes();
   return bytes;
 }
 
 void check_memory(const SceneParameters& p, const MemoryLimit& limit) {
+  const std::string grid = std::to_string(p.rows) + " x " + std::to_string(p.cols);
   const double needed = estimated_bytes(p);
-  if (needed <= limit.bytes) return;
-  throw InvalidParameter("rows x cols", std::to_string(p.rows) + " x " + std::to_string(p.cols),
-                         "needs about " + mebibytes(needed) + " MiB with " + p.integrator +
-                             "; about " + mebibytes(limit.bytes) + " MiB are free (" +
-                             limit.source + "): make the grid smaller");
+  if (needed > limit.bytes)
+    throw InvalidParameter("rows x cols", grid,
+                           "needs about " + mebibytes(needed) + " MiB with " + p.integrator +
+                               "; about " + mebibytes(limit.bytes) + " MiB are free (" +
+                               limit.source + "): make the grid smaller");
+  const double stacks = thread_stack_bytes(p);
+  if (needed + stacks > limit.mappable)
+    throw InvalidParameter(
+        "rows x cols", grid,
+        "needs about " + mebibytes(needed) + " MiB with " + p.integrator + ", and " +
+            mebibytes(stacks) + " MiB of address space for the stacks of its " +
+            std::to_string(thread_count() - 1) + " other threads; about " +
+            mebibytes(limit.mappable) + " MiB may be mapped (" + limit.mappable_source +
+            "): make the grid smaller, or set OMP_NUM_THREADS=1");
 }
 
 void throw_out_of_memory(const SceneParameters& p, const std::string& when) {

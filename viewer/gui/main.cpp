@@ -189,7 +189,8 @@ void check_window_memory(const SceneParameters& p) {
   const double scene = estimated_bytes(p);
   rlimit address_space{};
   if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY) {
-    const double needed = address_space_in_use() + window_address_space + margin + scene;
+    const double needed =
+        address_space_in_use() + window_address_space + margin + scene + thread_stack_bytes(p);
     if (needed > double(address_space.rlim_cur))
       throw Refused("the window needs " + mebibytes_text(needed) +
                     " of address space; the limit is " +
