@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -47,41 +48,44 @@ double integrator_bytes_per_particle(const std::string& integrator) {
   return 300;  // velocity-verlet, implicit-euler
 }
 
+// A stack size as libgomp reads one: strtoul's whole number, then spaces, an optional unit (B, K,
+// M or G; K if none) and spaces; bytes, or nothing when the text is not one (libgomp then keeps
+// the default stack).
+std::optional<double> stack_setting(const char* text) {
+  if (text == nullptr) return std::nullopt;
+  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
+  while (space(*text))
+    ++text;
+  if (*text == '-') return std::nullopt;  // strtoul wraps it around; libgomp refuses the result
+  char* end = nullptr;
+  errno = 0;
+  const unsigned long value = std::strtoul(text, &end, 10);
+  if (end == text || errno != 0 || value == 0) return std::nullopt;
+  while (space(*end))
+    ++end;
+  double unit = kib;
+  const std::string_view units = "bkmg";
+  if (const auto i = units.find(char(std::tolower(static_cast<unsigned char>(*end))));
+      *end != '\0' && i != std::string_view::npos) {
+    unit = std::pow(1024.0, double(i));
+    ++end;
+  }
+  while (space(*end))
+    ++end;
+  if (*end != '\0') return std::nullopt;
+  return double(value) * unit;
+}
+
 // Implicit Euler's fallback, a sparse LDLT of M + hC + h²K: its fill-in grows slowly with the
 // grid. Measured, max RSS of springlab-run on task5 with every k = 1e9 and m = 1e-3 (CG gives
 // up, the factorisation runs), whole process: 7.8 KiB a particle at 100x100 (78 MB), 7.8 at
 // 200x200 (312 MB), 9.2 at 300x300 (846 MB); 8.4 at 400x400 in issue 13. Modelled as
 // 7 + 0.35 log2(n/1e4) KiB a particle on top of the rest (300x300: 850 MB estimated).
-// libgomp's reading of a stack size: spaces, a sign, digits, spaces, an optional unit, spaces;
-// bytes, or nothing when the text is not one (libgomp then keeps the default stack).
-std::optional<double> stack_setting(const char* text) {
-  if (text == nullptr) return std::nullopt;
-  const auto space = [](char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; };
-  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
-  const char* c = text;
-  while (space(*c))
-    ++c;
-  if (*c == '+') ++c;  // strtoul's sign; a '-' wraps around, and libgomp refuses the result
-  if (!digit(*c)) return std::nullopt;
-  double value = 0.0;
-  for (; digit(*c); ++c)
-    value = 10 * value + (*c - '0');
-  while (space(*c))
-    ++c;
-  double unit = kib;
-  const std::string_view units = "bkmg";
-  if (const auto i = units.find(char(std::tolower(static_cast<unsigned char>(*c))));
-      *c != '\0' && i != std::string_view::npos) {
-    unit = std::pow(1024.0, double(i));
-    ++c;
-  }
-  while (space(*c))
-    ++c;
-  if (*c != '\0' || value == 0.0) return std::nullopt;
-  return value * unit;
-}
-
 }  // namespace
+
+double factorisation_bytes(double particles) {
+  return particles * kib * (7.0 + 0.35 * std::max(0.0, std::log2(particles / 1e4)));
+}
 
 double one_thread_stack_bytes() {
   std::optional<double> bytes = stack_setting(std::getenv("OMP_STACKSIZE"));
@@ -102,10 +106,6 @@ double thread_stack_bytes(const SceneParameters& p) {
   const double particles = double(p.rows) * double(p.cols);
   if (particles < GridForces::parallel_particles) return 0.0;
   return (thread_count() - 1) * one_thread_stack_bytes();
-}
-
-double factorisation_bytes(double particles) {
-  return particles * kib * (7.0 + 0.35 * std::max(0.0, std::log2(particles / 1e4)));
 }
 
 namespace {
