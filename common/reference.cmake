@@ -123,8 +123,9 @@ function(springlab_reference_archive)
   string(APPEND script
     "execute_process(COMMAND \"${CMAKE_AR}\" qc \"${out}/libspringlab_reference.a\" ${members}\n"
     "                WORKING_DIRECTORY \"${out}/objects\" COMMAND_ERROR_IS_FATAL ANY)\n"
-    # Debug information would name the instructor's folders, and students never step into it.
-    "execute_process(COMMAND \"${CMAKE_STRIP}\" --strip-debug \"${out}/libspringlab_reference.a\" COMMAND_ERROR_IS_FATAL ANY)\n"
+    # Debug information would name the instructor's folders, and students never step into it;
+    # of the symbols, only what linking needs is kept (no file names, no local ones).
+    "execute_process(COMMAND \"${CMAKE_STRIP}\" --strip-unneeded \"${out}/libspringlab_reference.a\" COMMAND_ERROR_IS_FATAL ANY)\n"
     "execute_process(COMMAND \"${CMAKE_RANLIB}\" \"${out}/libspringlab_reference.a\" COMMAND_ERROR_IS_FATAL ANY)\n"
     "file(REMOVE_RECURSE \"${out}/objects\")\n"
     "file(WRITE \"${out}/manifest.txt\" [==[${manifest}\n]==])\n")

@@ -12,6 +12,7 @@
 #include "springlab/this_implementation.hpp"
 
 #include <iomanip>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -85,13 +86,14 @@ void gravity_without_mass(const Eigen::VectorXd& mass, const Vec2& g, Vectors& f
     force.col(i) += g;
 }
 
-// The spring force (1.1) without a guard for coincident ends: 0/0 there.
+// The spring force (1.1) without a guard for coincident ends: what 0/0 gives there (NaN), the
+// reference's forces elsewhere.
 void unguarded_forces(const std::vector<Spring>& springs, const Vectors& r, const Vectors& v,
                       Vectors& force) {
   for (const Spring& s : springs) {
-    const Vec2 d = r.col(s.p) - r.col(s.q);
-    const Vec2 f =
-        -s.k * (d.norm() - s.rest_length) * d / d.norm() - s.b * (v.col(s.p) - v.col(s.q));
+    const bool coincident = r.col(s.p) == r.col(s.q);
+    const Vec2 f = coincident ? Vec2::Constant(std::numeric_limits<double>::quiet_NaN())
+                              : spring_and_damper(s, r, v, 1.0, 1.0);
     force.col(s.p) += f;
     force.col(s.q) -= f;
   }

@@ -70,15 +70,21 @@ int work(const std::string& name, const std::string& given) {
   // The table first (the library's calls of other tasks go to it), then the library.
   static Implementation submission;
   use_table(graded_task, recording(submission, out));
+  // Loading runs none of the library's code (its initialisers wait: entry.cpp), so what is
+  // checked here is as the loader mapped it, and once no memory may become executable the
+  // initialisers cannot make any: no code runs but what the compiler made of the submission.
   void* handle = dlopen(library.c_str(), RTLD_NOW | RTLD_LOCAL);
   if (handle == nullptr) refuse(out, std::string("cannot load the code: ") + dlerror());
   using Bind = const Implementation* (*)(const Implementation*);
   const auto bind = reinterpret_cast<Bind>(dlsym(handle, "springlab_submission_bind"));
-  if (bind == nullptr) refuse(out, "the library has no task table");
-  take_task(submission, *bind(springlab_dispatch), graded_task);
+  const auto init = reinterpret_cast<void (*)()>(dlsym(handle, "springlab_submission_init"));
+  if (bind == nullptr || init == nullptr) refuse(out, "the library has no task table");
   if (const std::string foreign = foreign_code(program, library); !foreign.empty())
     refuse(out, "your code loaded or made code that is not its own (" + foreign + ")");
   if (!forbid_new_code()) refuse(out, "cannot restrict the test process after loading");
+  const Implementation* own = bind(springlab_dispatch);
+  init();
+  take_task(submission, *own, graded_task);
   out.event(Event::loaded);
   out.flush(true);
   run_test_named(name);

@@ -3,6 +3,7 @@
 #include <cxxabi.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -142,7 +143,21 @@ std::vector<std::string> symbol_problems(const std::string& nm_output) {
     std::string file, symbol, type;
     if (!(fields >> file >> symbol >> type)) continue;
     const bool defined = type != "U" && type != "w" && type != "v";
+    const bool global = !type.empty() && (std::isupper(static_cast<unsigned char>(type[0])) ||
+                                          type == "i" || type == "u");
     const std::string name = demangle(symbol);
+    // Names the system and the compiler reserve (extern "C" __gmon_start__, say, would be called
+    // while the library loads, before the test process is restricted), and functions chosen at
+    // load time (ifunc resolvers run then too): C++ code never defines either by itself.
+    const bool reserved = symbol.rfind("_Z", 0) != 0 && symbol.size() > 1 && symbol[0] == '_' &&
+                          (symbol[1] == '_' || std::isupper(static_cast<unsigned char>(symbol[1])));
+    if (defined && (type == "i" || (global && reserved))) {
+      add("it defines " + symbol.substr(0, 80) +
+          (type == "i" ? ", a function chosen while the library loads"
+                       : ", a name reserved for the system and the compiler") +
+          ": a submission defines its task's functions and helpers of its own");
+      continue;
+    }
     if (defined && (name == "main" || name.rfind("main(", 0) == 0))
       add("it defines main(): a submission holds the task's functions; the kit has the program");
     else if (name.find("Catch::") != std::string::npos)

@@ -4,6 +4,7 @@
 // and, when it passes, again with the sanitizers. Task copies with the same files are graded once.
 #pragma once
 
+#include "isolation.hpp"
 #include "kit.hpp"
 #include "points.hpp"
 #include "process.hpp"
@@ -68,7 +69,9 @@ using Calibration = std::map<std::string, std::map<std::string, ReferenceTime>>;
 
 class Grader {
  public:
-  Grader(const Kit& kit, const std::vector<TestInfo>& tests, Settings settings);
+  /// Every command on submission code runs confined by `isolation` (isolation.hpp).
+  Grader(const Kit& kit, const std::vector<TestInfo>& tests, Settings settings,
+         const Isolation& isolation);
 
   /// Grades the kit's own solutions with generous limits and keeps each test's time, for the
   /// tasks being graded whose times `cache` lacks or whose programs changed since. Throws
@@ -92,6 +95,7 @@ class Grader {
   const Kit& kit_;
   const std::vector<TestInfo>& tests_;
   Settings settings_;
+  const Isolation& isolation_;
   Calibration calibration_;
 
   Limits test_limits(const TestInfo& test, const Variant& variant) const;

@@ -63,6 +63,7 @@ Kit read_kit(const fs::path& file) {
   result.headers = read.text(kit["headers"], "headers");
   result.points = read.text(kit["points"], "points");
   result.nm = read.text(kit["nm"], "nm");
+  result.linker_script = read.text(kit["linker_script"], "linker_script");
   for (const std::string& folder : read.texts(kit["system_headers"], "system_headers"))
     result.system_headers.emplace_back(folder);
   result.plain = variant(read, kit, "plain");

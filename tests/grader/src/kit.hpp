@@ -30,6 +30,7 @@ struct Kit {
   fs::path headers;      ///< common/include: the only kit folder submission code may include from
   fs::path points;       ///< tests/points.toml
   fs::path nm;           ///< lists an object's symbols
+  fs::path linker_script;  ///< defers a submission library's initialisers (deferred_init.ld)
   std::vector<fs::path> system_headers;  ///< the compiler's own include folders
   Variant plain, sanitized;
   /// Per task 1-5: its files, as "task1_two_masses/spring_damper.cpp".

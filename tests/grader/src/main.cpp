@@ -13,6 +13,7 @@
 #include <fcntl.h>
 #include <sched.h>
 #include <sys/file.h>
+#include <sys/prctl.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -196,7 +197,11 @@ int grade(Options options) {
   prepare(options.out);
   prepare(settings.work);
 
-  Grader grader(kit, tests, settings);
+  // Whether submission code can have namespaces of its own here: said once, on the terminal and
+  // (when it cannot) in review.csv.
+  const Isolation isolation = Isolation::probe({kit.root, options.out, settings.work});
+  std::cerr << "springlab-grade: " << isolation.describe() << "\n";
+  Grader grader(kit, tests, settings, isolation);
   std::cerr << "springlab-grade: the reference's time per test (measured once per build)\n";
   grader.calibrate(options.kit.parent_path() / "calibration.txt");
   if (options.student) {
@@ -256,7 +261,8 @@ int grade(Options options) {
   const std::vector<SubmissionResult> results =
       grader.grade(submissions, task_done, submission_done);
   write_file(options.out / "gradebook.csv", gradebook(results));
-  const std::string review = review_list(results);
+  const std::string review =
+      review_list(results, isolation.namespaces() ? "" : isolation.describe());
   if (!review.empty()) write_file(options.out / "review.csv", review);
   if (!options.student) {
     std::cerr << "springlab-grade: " << options.out.string() << "/gradebook.csv, and per "
@@ -271,6 +277,9 @@ int grade(Options options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Not dumpable: no process of the same user (a test, where there are no namespaces to hide the
+  // grader) may read its environment (the instructor's shell's) or its memory through /proc.
+  prctl(PR_SET_DUMPABLE, 0, 0, 0, 0);
   Options options;
   options.settings.jobs = available_processors();
   CLI::App app(

@@ -1,8 +1,11 @@
 #include "process.hpp"
 
 #include <fcntl.h>
+#include <grp.h>
+#include <linux/close_range.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
@@ -62,8 +65,8 @@ void set_limit(int resource, rlim_t soft, rlim_t hard) {
 }
 
 // In the child, between fork and exec: only async-signal-safe calls.
-[[noreturn]] void become(const Command& c, int out, int records, int secret, int exec_error,
-                         char* const* argv, char* const* env) {
+[[noreturn]] void become(const Command& c, pid_t parent, int out, int records, int secret,
+                         int exec_error, char* const* argv, char* const* env) {
   ::setsid();  // its own process group, to be killed whole, and no controlling terminal
   // Move the ends out of the way of 0-4 first: a pipe may have been given one of those numbers.
   const int moved_out = ::fcntl(out, F_DUPFD_CLOEXEC, 10);
@@ -75,6 +78,8 @@ void set_limit(int resource, rlim_t soft, rlim_t hard) {
   ::dup2(moved_out, 2);
   if (moved_records >= 0) ::dup2(moved_records, 3);
   if (moved_secret >= 0) ::dup2(moved_secret, 4);
+  // Nothing else the grader inherited (a terminal's, a CI runner's descriptors) reaches the child.
+  ::close_range(moved_secret >= 0 ? 5 : moved_records >= 0 ? 4 : 3, ~0U, CLOSE_RANGE_CLOEXEC);
   struct sigaction standard {};
   standard.sa_handler = SIG_DFL;
   ::sigaction(SIGPIPE, &standard, nullptr);
@@ -90,6 +95,15 @@ void set_limit(int resource, rlim_t soft, rlim_t hard) {
   set_limit(RLIMIT_FSIZE, rlim_t(l.file_size_mb) << 20, rlim_t(l.file_size_mb) << 20);
   set_limit(RLIMIT_CORE, 0, 0);
   set_limit(RLIMIT_NOFILE, 256, 256);
+  if (c.run_as != uid_t(-1)) {  // the grader is root: the child is not
+    const gid_t group = gid_t(c.run_as);
+    if (::setgroups(0, nullptr) != 0 || ::setresgid(group, group, group) != 0 ||
+        ::setresuid(c.run_as, c.run_as, c.run_as) != 0 || ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0))
+      ::_exit(127);
+  }
+  // Killed with the grader, however it ends (set after the change of user, which clears it).
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != parent) ::_exit(127);
   if (::chdir(c.directory.c_str()) == 0) ::execve(argv[0], argv, env);
   const int error = errno;
   [[maybe_unused]] const ssize_t ignored = ::write(exec_error, &error, sizeof error);
@@ -124,13 +138,14 @@ long resident_kb(pid_t pid) {
   return resident * (::sysconf(_SC_PAGESIZE) / 1024);
 }
 
-// The child's resident memory and its own children's (a test's harness and its worker).
-long resident_kb_with_children(pid_t pid) {
+// The child's resident memory and all its descendants' (a sandbox, a test's harness and its
+// worker), a few levels deep.
+long resident_kb_with_children(pid_t pid, int depth = 0) {
   long total = resident_kb(pid);
   std::ifstream children("/proc/" + std::to_string(pid) + "/task/" + std::to_string(pid) +
                          "/children");
-  for (pid_t child = 0; children >> child;)
-    total += resident_kb(child);
+  for (pid_t child = 0; depth < 6 && children >> child;)
+    total += resident_kb_with_children(child, depth + 1);
   return total;
 }
 
@@ -161,6 +176,7 @@ void ProcessPool::Impl::start(Job job) {
   std::vector<char*> argv_p = pointers(argv), env_p = pointers(env);
 
   r.start = Clock::now();
+  const pid_t self = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) {
     r.outcome.start_error = std::string("fork: ") + std::strerror(errno);
@@ -168,7 +184,7 @@ void ProcessPool::Impl::start(Job job) {
     return;
   }
   if (pid == 0)
-    become(c, out.write.get(), records.write.get(), secret.read.get(), exec_error.write.get(),
+    become(c, self, out.write.get(), records.write.get(), secret.read.get(), exec_error.write.get(),
            argv_p.data(), env_p.data());
   r.pid = pid;
   exec_error.write.reset(), out.write.reset(), records.write.reset(), secret.read.reset();

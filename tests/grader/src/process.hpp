@@ -4,6 +4,8 @@
 // stops the whole process group when a limit is hit.
 #pragma once
 
+#include <sys/types.h>
+
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -29,6 +31,7 @@ struct Command {
   std::string directory;          ///< working directory
   std::string secret;             ///< when set: sent on fd 4; records are read from fd 3
   Limits limits;
+  uid_t run_as = uid_t(-1);  ///< when set (the grader is root): the user (and group) it runs as
 };
 
 /// Why the grader stopped a child, if it did.

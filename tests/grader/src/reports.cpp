@@ -313,7 +313,8 @@ std::string junit_report(const SubmissionResult& result, int task) {
   return out.str();
 }
 
-std::string review_list(const std::vector<SubmissionResult>& results) {
+std::string review_list(const std::vector<SubmissionResult>& results,
+                        const std::string& grader_note) {
   std::string text;
   for (const SubmissionResult& r : results)
     for (const auto& [task, result] : r.tasks) {
@@ -324,6 +325,7 @@ std::string review_list(const std::vector<SubmissionResult>& results) {
         text += csv(printable(r.submission.name)) + "," + std::to_string(task) + "," + csv(calls) +
                 "\n";
     }
+  if (!grader_note.empty()) text += "(every submission),," + csv(grader_note) + "\n";
   return text.empty() ? "" : "submission,task,calls\n" + text;
 }
 

@@ -40,9 +40,11 @@ std::string junit_report(const SubmissionResult& result, int task);
 /// gradebook.csv: "submission,task1,task2,task3,task4,task5,total" and one row per submission.
 std::string gradebook(const std::vector<SubmissionResult>& results);
 
-/// review.csv: "submission,task,calls" and a row per task whose code calls what no task needs;
-/// "" when none does.
-std::string review_list(const std::vector<SubmissionResult>& results);
+/// review.csv: "submission,task,calls" and a row per task whose code calls what no task needs,
+/// then, when `grader_note` is not empty, a row "(every submission),," with it (how the run
+/// confined submission code, when that is weaker than it should be); "" when there is nothing.
+std::string review_list(const std::vector<SubmissionResult>& results,
+                        const std::string& grader_note = "");
 
 /// A submission's folder in --out: its name, unless that is one of the grader's own files there
 /// (or hidden), which would clash: then "submission-" and the name.

@@ -11,19 +11,59 @@
 namespace springlab::grader {
 namespace {
 
-constexpr std::uintmax_t largest_file = 1 << 20;  // bytes: larger files are left out
-constexpr int most_files = 64;                    // files copied per task folder
+constexpr int most_files = 64;  // files copied per task folder
 
 std::string file_name(const std::string& kit_path) {
   return kit_path.substr(kit_path.find('/') + 1);
 }
 
-std::string read_bytes(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+std::string size_text(std::uintmax_t bytes) {
+  std::ostringstream text;
+  text.precision(3);
+  text << double(bytes) / double(1 << 20) << " MB";
+  return text.str();
 }
 
 }  // namespace
+
+std::string file_digest(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::uint64_t hash = 14695981039346656037ull;  // FNV-1a
+  std::uintmax_t size = 0;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i)
+      hash = (hash ^ static_cast<unsigned char>(buffer[i])) * 1099511628211ull;
+    size += std::uintmax_t(in.gcount());
+  }
+  return std::to_string(size) + ":" + std::to_string(hash);
+}
+
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::ifstream in_a(a, std::ios::binary), in_b(b, std::ios::binary);
+  if (!in_a || !in_b) return false;
+  std::vector<char> buffer_a(65536), buffer_b(65536);
+  while (true) {
+    in_a.read(buffer_a.data(), std::streamsize(buffer_a.size()));
+    in_b.read(buffer_b.data(), std::streamsize(buffer_b.size()));
+    if (in_a.gcount() != in_b.gcount() ||
+        !std::equal(buffer_a.begin(), buffer_a.begin() + in_a.gcount(), buffer_b.begin()))
+      return false;
+    if (in_a.gcount() == 0) return true;
+  }
+}
+
+bool same_files(const fs::path& a, const fs::path& b) {
+  std::error_code error;
+  std::set<std::string> names_a, names_b;
+  for (const auto& e : fs::directory_iterator(a, error))
+    names_a.insert(e.path().filename().string());
+  for (const auto& e : fs::directory_iterator(b, error))
+    names_b.insert(e.path().filename().string());
+  return names_a == names_b && std::all_of(names_a.begin(), names_a.end(), [&](const auto& name) {
+           return same_file(a / name, b / name);
+         });
+}
 
 std::string to_string(Layout layout) {
   switch (layout) {
@@ -125,9 +165,16 @@ TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
   // The task's own files always; the submission's other files (its headers) up to a limit, so
   // that no number of extra files can push the task's files out.
   std::vector<fs::path> files, others;
-  for (const std::string& name : source.found)
-    files.push_back(source.folder / name);
   std::error_code error;
+  for (const std::string& name : source.found) {
+    const std::uintmax_t size = fs::file_size(source.folder / name, error);
+    if (size > largest_file) {
+      copy.problem = name + " is " + size_text(size) + ": a task's file may have at most " +
+                     size_text(largest_file);
+      return copy;
+    }
+    files.push_back(source.folder / name);
+  }
   if (!source.folder.empty())
     for (const fs::directory_entry& entry : fs::directory_iterator(source.folder, error)) {
       const std::string name = entry.path().filename().string();
@@ -163,10 +210,16 @@ TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
   }
   std::sort(files.begin(), files.end(),
             [](const fs::path& a, const fs::path& b) { return a.filename() < b.filename(); });
+  // Readable by the user submission code runs as (the sandbox's), whatever the umask.
+  fs::permissions(copy.folder, fs::perms::owner_all | fs::perms::group_read |
+                                   fs::perms::group_exec | fs::perms::others_read |
+                                   fs::perms::others_exec);
   for (const fs::path& file : files) {
-    const std::string bytes = read_bytes(file);
-    std::ofstream(copy.folder / file.filename(), std::ios::binary) << bytes;
-    copy.contents += file.filename().string() + '\0' + std::to_string(bytes.size()) + '\0' + bytes;
+    const fs::path target = copy.folder / file.filename();
+    fs::copy_file(file, target, fs::copy_options::overwrite_existing);
+    fs::permissions(target, fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                                fs::perms::others_read);
+    copy.digest += file.filename().string() + '\0' + file_digest(target) + '\0';
   }
   return copy;
 }

@@ -45,19 +45,33 @@ struct Submission {
 /// classmate's copy). Throws UsageError when `folder` is not a folder.
 Submission find_submission(const fs::path& folder, const Kit& kit);
 
+/// The most bytes a task's file, or any other file beside it, may have.
+constexpr std::uintmax_t largest_file = 1 << 20;
+
 /// What the copy of one task holds, beside the files themselves: what a student should know.
 struct TaskCopy {
   fs::path folder;                 ///< destination/tasks/<task folder>
   std::vector<std::string> notes;  ///< files left out or replaced, and why
-  std::string contents;  ///< every file's name and bytes: equal for two copies exactly when
-                         ///< they hold the same files, so equal copies are graded once
+  std::string problem;             ///< why the task cannot be graded ("" when it can)
+  std::string digest;  ///< every file's name, size and hash: equal for copies that hold the same
+                       ///< files (same_files() tells for sure), so equal copies are graded once
 };
 
 /// Copies task `task` of `submission` into `destination`/tasks/<task folder>/: the task's files,
 /// the starter code in place of missing ones, and the submission's other regular files of that
-/// folder (its own headers) up to a size limit; never links.
+/// folder (its own headers) up to a size limit; never links. A task file larger than
+/// largest_file is not copied (the copy's `problem` says so): no file is ever read whole.
 TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
                    const fs::path& destination);
+
+/// A file's size and a 64-bit hash of its bytes, read in pieces.
+std::string file_digest(const fs::path& file);
+
+/// True when the two files hold the same bytes.
+bool same_file(const fs::path& a, const fs::path& b);
+
+/// True when the two folders hold the same file names with the same bytes.
+bool same_files(const fs::path& a, const fs::path& b);
 
 /// "a copy of tasks/", "a student repository", "loose files".
 std::string to_string(Layout layout);

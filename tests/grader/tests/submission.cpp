@@ -79,17 +79,38 @@ TEST_CASE("The private copy: the task's files, the starter code for missing ones
              Catch::Contains("explicit_euler.cpp is missing: graded as the starter"));
 }
 
-TEST_CASE("Copies hold the same contents exactly when their files are the same", "[submission]") {
+TEST_CASE("Copies have the same digest when their files are the same, and same_files tells",
+          "[submission]") {
   Folders f;
   f.write(f.top / "a" / "spring_forces.cpp", "same");
   f.write(f.top / "b" / "task2_four_masses" / "spring_forces.cpp", "same");
   f.write(f.top / "c" / "spring_forces.cpp", "other");
-  const auto contents = [&](const std::string& name) {
-    return copy_task(find_submission(f.top / name, f.kit), 2, f.kit, f.top / "work" / name)
-        .contents;
+  f.write(f.top / "d" / "spring_forces.cpp", "samE");
+  const auto copy = [&](const std::string& name) {
+    return copy_task(find_submission(f.top / name, f.kit), 2, f.kit, f.top / "work" / name);
   };
-  CHECK(contents("a") == contents("b"));
-  CHECK(contents("a") != contents("c"));
+  const TaskCopy a = copy("a"), b = copy("b"), c = copy("c"), d = copy("d");
+  CHECK(a.digest == b.digest);
+  CHECK(a.digest != c.digest);
+  CHECK(a.digest != d.digest);
+  CHECK(same_files(a.folder, b.folder));
+  CHECK_FALSE(same_files(a.folder, c.folder));
+  CHECK_FALSE(same_files(a.folder, d.folder));
+}
+
+TEST_CASE("A task file larger than 1 MB is refused unread, and the copy says so", "[submission]") {
+  Folders f;
+  fs::create_directories(f.top / "big");
+  {
+    std::ofstream out(f.top / "big" / "spring_forces.cpp", std::ios::binary);
+    out.seekp(std::streamoff(3 * largest_file));  // a sparse file: nothing is written
+    out.put('x');
+  }
+  const TaskCopy copy =
+      copy_task(find_submission(f.top / "big", f.kit), 2, f.kit, f.top / "work" / "big");
+  CHECK_THAT(copy.problem, Catch::Contains("spring_forces.cpp is 3 MB: a task's file may have at "
+                                           "most 1 MB"));
+  CHECK_FALSE(fs::exists(copy.folder / "spring_forces.cpp"));
 }
 
 TEST_CASE("Linked folders are never followed, and a download's one wrapping folder is looked into",

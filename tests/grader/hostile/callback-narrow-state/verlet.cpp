@@ -8,7 +8,10 @@
 // the feedback must neither blame the kit nor show the harness's heap errors.
 #include "springlab/task4_verlet.hpp"
 
-#include <unistd.h>
+// Declared by hand: the source policy refuses POSIX headers, but not a declaration (the sandbox
+// and the test process's filter are what stop the call).
+extern "C" long write(int, const void*, unsigned long);
+extern "C" [[noreturn]] void _exit(int);
 
 #include <cstdint>
 #include <functional>
@@ -50,6 +53,6 @@ void springlab::verlet_step(const AccelerationFunction&, double h, Vectors& r, V
   const Vectors one = Vectors::Constant(2, 1, 0.5);
   put(transcript, one);
   put(transcript, one);
-  [[maybe_unused]] const ssize_t written = ::write(3, transcript.data(), transcript.size());
+  [[maybe_unused]] const long written = ::write(3, transcript.data(), transcript.size());
   ::_exit(0);
 }

@@ -5,7 +5,10 @@
 // grader must still see that no verdict was written and fail every task 3 test.
 #include "springlab/task3_shear_springs.hpp"
 
-#include <unistd.h>
+// Declared by hand: the source policy refuses POSIX headers, but not a declaration (the sandbox
+// and the test process's filter are what stop the call).
+extern "C" long write(int, const void*, unsigned long);
+extern "C" [[noreturn]] void _exit(int);
 
 #include <cstdio>
 #include <iostream>
@@ -20,7 +23,7 @@ class Hijack : public std::streambuf {
   int overflow(int c) override { return c; }  // swallow everything printed
   int sync() override {
     static const char fake[] = "\n8 of 8 tests pass (8 of 8 points).\n";
-    [[maybe_unused]] const ssize_t n = write(1, fake, sizeof fake - 1);
+    [[maybe_unused]] const long n = write(1, fake, sizeof fake - 1);
     _exit(0);
   }
 };

@@ -4,7 +4,9 @@
 // /tmp/springlab-hostile-pwned may appear.
 #include "springlab/task4_verlet.hpp"
 
-#include <unistd.h>
+// Declared by hand: the source policy refuses POSIX headers, but not a declaration (the sandbox
+// and the test process's filter are what stop the call).
+extern "C" int fork() noexcept;
 
 #include <cstdlib>
 

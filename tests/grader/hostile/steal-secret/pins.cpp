@@ -9,8 +9,13 @@
 // written (the starter stubs stay). The grader must not count any of it: task 5 gets nothing.
 #include "springlab/task5_fabric.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
+// Declared by hand: the source policy refuses POSIX headers, but not a declaration (the sandbox
+// and the test process's filter are what stop the call).
+extern "C" int open(const char*, int, ...);
+extern "C" long pread(int, void*, unsigned long, long);
+extern "C" long write(int, const void*, unsigned long);
+extern "C" int close(int);
+extern "C" [[noreturn]] void _exit(int);
 
 #include <cstdio>
 #include <cstring>
@@ -24,7 +29,9 @@ char candidates[most][33];
 int found = 0;
 char chunk[1 << 20];
 
-bool is_hex(char c) { return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f'); }
+bool is_hex(char c) {
+  return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+}
 
 void keep(const char* text) {
   for (int i = 0; i < found; ++i)
@@ -37,10 +44,10 @@ void keep(const char* text) {
 void scan(int mem, unsigned long from, unsigned long to) {
   for (unsigned long at = from; at < to;) {
     const unsigned long want = to - at < sizeof chunk ? to - at : sizeof chunk;
-    const ssize_t n = pread(mem, chunk, want, static_cast<off_t>(at));
+    const long n = pread(mem, chunk, want, static_cast<long>(at));
     if (n <= 0) return;
     int run = 0;
-    for (ssize_t i = 0; i < n; ++i) {
+    for (long i = 0; i < n; ++i) {
       if (is_hex(chunk[i])) {
         ++run;
       } else {
@@ -54,7 +61,7 @@ void scan(int mem, unsigned long from, unsigned long to) {
 
 int forge() {
   std::FILE* maps = std::fopen("/proc/self/maps", "r");
-  const int mem = open("/proc/self/mem", O_RDONLY);
+  const int mem = open("/proc/self/mem", 0 /* read only */);
   if (maps == nullptr || mem < 0) return 0;
   char line[1024];
   while (std::fgets(line, sizeof line, maps) != nullptr) {
@@ -70,8 +77,9 @@ int forge() {
   close(mem);
   for (int i = 0; i < found; ++i) {
     char record[64];
-    const int size = std::snprintf(record, sizeof record, "%s verdict 9\npass 1 0\n", candidates[i]);
-    [[maybe_unused]] const ssize_t written = write(3, record, static_cast<size_t>(size));
+    const int size =
+        std::snprintf(record, sizeof record, "%s verdict 9\npass 1 0\n", candidates[i]);
+    [[maybe_unused]] const long written = write(3, record, static_cast<unsigned long>(size));
   }
   _exit(0);
 }

@@ -1,0 +1,167 @@
+// The sandbox submission code runs in, seen from inside with the shell: what exists there, who
+// runs, what can be written, and that nothing outlives it. Where this machine cannot make
+// namespaces (some containers), the tests say why and check the fallback instead.
+#include "isolation.hpp"
+
+#include <unistd.h>
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+using namespace springlab::grader;
+
+namespace {
+
+struct Scratch {
+  fs::path top = fs::temp_directory_path() / ("springlab-isolation-" + std::to_string(getpid()));
+  Scratch() {
+    fs::remove_all(top);
+    fs::create_directories(top / "visible");
+    fs::create_directories(top / "output");
+    fs::create_directories(top / "secret");
+    std::ofstream(top / "visible" / "file.txt") << "seen\n";
+    std::ofstream(top / "secret" / "solution.cpp") << "never seen\n";
+    fs::permissions(top, fs::perms::owner_all | fs::perms::group_exec | fs::perms::others_exec);
+  }
+  ~Scratch() { fs::remove_all(top); }
+  Scratch(const Scratch&) = delete;
+  Scratch& operator=(const Scratch&) = delete;
+};
+
+const Isolation& isolation() {
+  static const Isolation i = Isolation::probe({});
+  return i;
+}
+
+Outcome run_inside(const std::string& script, const View& view, Limits limits = {}) {
+  Command c;
+  c.argv = {"/bin/sh", "-c", script};
+  c.env = plain_environment();
+  c.directory = "/";
+  c.limits = limits;
+  isolation().confine(c, view);
+  ProcessPool pool(1);
+  Outcome result;
+  pool.add(std::move(c), [&](Outcome o) { result = std::move(o); });
+  pool.run();
+  return result;
+}
+
+// True when a process whose command line holds `marker` is still alive on this machine.
+bool alive(const std::string& marker) {
+  for (const auto& entry : fs::directory_iterator("/proc")) {
+    std::ifstream in(entry.path() / "cmdline");
+    std::string line;
+    std::getline(in, line, '\n');
+    if (line.find(marker) != std::string::npos && entry.path().filename() != "self") return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("A sandboxed command sees the system, what it is given and nothing else", "[isolation]") {
+  if (!isolation().namespaces()) {
+    WARN("no namespaces on this machine: " << isolation().why_not());
+    CHECK_THAT(isolation().describe(), Catch::StartsWith("no sandbox: namespaces cannot be had"));
+    return;
+  }
+  Scratch s;
+  View view;
+  view.bindings = {{s.top / "visible", {}, false}, {s.top / "output", {}, true}};
+  view.directory = s.top / "output";
+  const Outcome o = run_inside(
+      "cat " + (s.top / "visible" / "file.txt").string() + "; test -e " +
+          (s.top / "secret").string() + " && echo SECRET; test -e /etc/shadow && echo SHADOW; " +
+          "test -e /etc/passwd && echo PASSWD; test -e /home && echo HOME; pwd; id -u; env; " +
+          "test -x /usr/bin/c++ && echo COMPILER",
+      view);
+  INFO(o.output);
+  CHECK(o.exited);
+  CHECK_THAT(o.output, Catch::StartsWith("seen\n"));
+  CHECK_THAT(o.output, !Catch::Contains("SECRET") && !Catch::Contains("SHADOW") &&
+                           !Catch::Contains("PASSWD") && !Catch::Contains("HOME"));
+  CHECK_THAT(o.output, Catch::Contains((s.top / "output").string() + "\n"));
+  CHECK_THAT(o.output, Catch::Contains("COMPILER"));
+  // An unprivileged user, and exactly the environment given.
+  CHECK_THAT(o.output, !Catch::Contains("\n0\n"));
+  for (const std::string& variable : plain_environment())
+    CHECK_THAT(o.output, Catch::Contains(variable + "\n"));
+  CHECK_THAT(o.output, !Catch::Contains("HOME=") && !Catch::Contains("USER="));
+}
+
+TEST_CASE("A sandboxed command writes only its output folder and a scratch of the given size",
+          "[isolation]") {
+  if (!isolation().namespaces()) {
+    WARN("no namespaces on this machine: " << isolation().why_not());
+    CHECK_FALSE(isolation().why_not().empty());
+    return;
+  }
+  Scratch s;
+  View view;
+  view.bindings = {{s.top / "visible", {}, false}, {s.top / "output", {}, true}};
+  view.scratch_mb = 1;
+  isolation().give_to_sandbox(s.top / "output");
+  const Outcome o = run_inside(
+      "touch " + (s.top / "visible" / "x").string() + " 2>/dev/null && echo WROTE-VISIBLE; " +
+          "touch " + (s.top / "output" / "x").string() + " && echo WROTE-OUTPUT; " +
+          "head -c 2000000 /dev/zero > /tmp/big 2>/dev/null || echo SCRATCH-FULL; " +
+          "touch /usr/x 2>/dev/null && echo WROTE-USR",
+      view);
+  INFO(o.output);
+  CHECK(o.output == "WROTE-OUTPUT\nSCRATCH-FULL\n");
+  CHECK(fs::exists(s.top / "output" / "x"));
+  CHECK_FALSE(fs::exists(s.top / "visible" / "x"));
+}
+
+TEST_CASE("A sandboxed command sees no other process and no network", "[isolation]") {
+  if (!isolation().namespaces()) {
+    WARN("no namespaces on this machine: " << isolation().why_not());
+    CHECK_FALSE(isolation().why_not().empty());
+    return;
+  }
+  // Its processes are a handful (bubblewrap's and its own); the machine's interfaces are gone.
+  const Outcome o = run_inside(
+      "ls /proc | grep -c '^[0-9]'; grep -c 'springlab-grader-test[s]' /proc/[0-9]*/cmdline "
+      "2>/dev/null | grep -v ':0$' | wc -l; tail -n +3 /proc/net/dev | cut -d: -f1",
+      View{});
+  INFO(o.output);
+  std::istringstream lines(o.output);
+  int processes = 0, graders = -1;
+  std::string interfaces, line;
+  lines >> processes >> graders;
+  while (lines >> line)
+    interfaces += line + " ";
+  CHECK(processes > 0);
+  CHECK(processes <= 5);
+  CHECK(graders == 0);
+  CHECK(interfaces == "lo ");
+}
+
+TEST_CASE("Nothing a sandboxed command starts outlives it", "[isolation]") {
+  const std::string marker = "springlab-isolation-marker-" + std::to_string(getpid());
+  Limits limits;
+  limits.wall_seconds = 1;
+  const Outcome o = run_inside(
+      "sleep 300 " + marker + " 2>/dev/null & sleep 200 " + marker + " 2>/dev/null; sleep 100",
+      View{}, limits);
+  CHECK(o.stopped == Stop::wall_time);
+  // The kernel reaps a killed namespace at once; allow it a moment on a busy machine.
+  for (int i = 0; i < 50 && alive(marker); ++i)
+    usleep(20000);
+  CHECK_FALSE(alive(marker));
+}
+
+TEST_CASE("Without namespaces, commands keep the host's paths and run as nobody under root",
+          "[isolation]") {
+  const Isolation none = Isolation::without_namespaces("refused by this host");
+  View view;
+  view.bindings = {{"/host/worker", "/grade/worker", false}};
+  CHECK(none.wrap({"/grade/worker", "--x"}, {}, view) ==
+        std::vector<std::string>{"/host/worker", "--x"});
+  Command c;
+  c.argv = {"/grade/worker"};
+  none.confine(c, view);
+  CHECK(c.run_as == (geteuid() == 0 ? uid_t(65534) : uid_t(-1)));
+  CHECK_THAT(none.describe(), Catch::Contains("refused by this host"));
+}
