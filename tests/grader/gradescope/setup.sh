@@ -93,9 +93,9 @@ if ! at_least "$gcc_version" 12; then
 fi
 
 cd "$KIT"
-say "Building the grader (the kit, its tests and the reference, once: minutes)"
-[ -f build/dev/build.ninja ] || cmake --preset dev
-cmake --build build/dev --target springlab-grader
+say "Building the grader (the kit, its tests and the reference, once: minutes; the steps done and"
+say "the time left are shown), then each task's points"
+"$KIT/lab" points
 
 # The reference's time per test, measured once here and cached (calibration.txt), by grading the
 # starter code once: springlab-grade measures it first, and stops with status 1 if the kit's own
@@ -104,7 +104,7 @@ say "Measuring the reference's time per test (grading the starter code once)"
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
 if ! build/dev/tests/grader/springlab-grade --out "$scratch/results" --work "$scratch/work" \
-  tasks >"$scratch/grade.log" 2>&1; then
+  tasks >"$scratch/grade.log" 2> >(tee -a "$scratch/grade.log" | grep --line-buffered measur); then
   cat "$scratch/grade.log"
   die "springlab-grade failed on the starter code (above): the kit is broken, nothing could be graded"
 fi

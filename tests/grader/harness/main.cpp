@@ -21,6 +21,7 @@
 #include <dlfcn.h>
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -111,8 +112,12 @@ int run(const std::string& name, const std::string& worker, const std::string& l
   if (!receive_secret()) return 2;
   int ends[2];
   if (pipe2(ends, O_CLOEXEC) != 0) return 2;
+  const pid_t harness = getpid();
   const pid_t pid = fork();
   if (pid == 0) {
+    // Killed with the harness, however it ends (where no namespace ends them together).
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (getppid() != harness) _exit(127);
     dup2(ends[1], transcript_fd);  // the worker's fd 3 is the transcript, not the grader's
     const char* argv[] = {worker.c_str(), "--work", name.c_str(), library.c_str(), nullptr};
     execv(argv[0], const_cast<char* const*>(argv));

@@ -2,11 +2,16 @@
 
 #include "checks.hpp"
 #include "policy.hpp"
+#include "reports.hpp"
 #include "verdict.hpp"
 
+#include <sys/statvfs.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <deque>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -91,6 +96,18 @@ std::string task_signature(const Kit& kit, const std::vector<TestInfo>& tests, i
   return hex.str();
 }
 
+// Why the work folder cannot take more ("" when it can): less than 16 MB or 64 files free.
+std::string work_folder_full(const fs::path& work) {
+  struct statvfs space {};
+  if (::statvfs(work.c_str(), &space) != 0) return "";
+  const double free_mb = double(space.f_bavail) * double(space.f_frsize) / double(1 << 20);
+  if (free_mb >= 16.0 && space.f_favail >= 64) return "";
+  std::ostringstream why;
+  why << "the grader's work folder " << escaped(work.string()) << " is full ("
+      << std::lround(free_mb) << " MB, " << space.f_favail << " files free)";
+  return why.str();
+}
+
 }  // namespace
 
 double TaskResult::points() const {
@@ -119,6 +136,12 @@ double SubmissionResult::points() const {
   return sum;
 }
 
+std::string SubmissionResult::fault() const {
+  for (const auto& [n, task] : tasks)
+    if (!task.fault.empty()) return "task " + std::to_string(n) + ": " + task.fault;
+  return "";
+}
+
 double SubmissionResult::max_points() const {
   double sum = 0.0;
   for (const auto& [n, task] : tasks)
@@ -137,6 +160,7 @@ struct Grader::TaskBuild {
   std::vector<int> passed_plain;  // tests waiting for the sanitized library
   bool sanitized_started = false, sanitized_ready = false;
   std::string sanitized_problem;  // set when the sanitized build failed
+  std::string sanitized_fault;    // set when it failed because of the grader
   int tests_open = 0;
   std::vector<std::function<void()>> on_finish;
 
@@ -212,9 +236,12 @@ class Grader::Pipeline {
   }
 
  private:
-  using Then = std::function<void(bool ok, const std::string& messages)>;
-  // ok, the compiler's messages, and what the code may not include ("" when nothing).
-  using Compiled = std::function<void(bool, const std::string&, const std::string&)>;
+  // ok, the linker's messages, and the grader's own fault ("" when none).
+  using Then = std::function<void(bool ok, const std::string& messages, const std::string& fault)>;
+  // ok, the compiler's messages, what the code may not include and the grader's own fault ("" when
+  // nothing).
+  using Compiled =
+      std::function<void(bool, const std::string&, const std::string&, const std::string&)>;
 
   // What compiling one file gave, kept for any later copy whose own files that the compiler read
   // are the same, byte for byte: a mutant, or a student's untouched file, is compiled once.
@@ -224,6 +251,7 @@ class Grader::Pipeline {
     std::vector<std::string> read;  // the copy's files the compiler read
     bool ok = false;
     std::string messages, problem;
+    std::string fault;  // the grader's own: never kept for another copy
   };
   // By run, file, its digest and the copy's file names.
   std::map<std::string, std::vector<Object>> objects_;
@@ -292,6 +320,8 @@ class Grader::Pipeline {
       // A file that does not preprocess does not compile either (and what was not checked is
       // never compiled): the preprocessor's messages say why.
       if (!o.exited || o.exit_code != 0) {
+        if (const std::string fault = fault_of(o, "the preprocessor"); !fault.empty())
+          return fault_all(b, fault);
         std::string messages = stop_text(o.stopped, o.output) + o.start_error +
                                student_paths(o.output, b->copy, kit_.root);
         if (quotes_foreign_file(o.output, b->copy))
@@ -330,7 +360,9 @@ class Grader::Pipeline {
 
   void compile_checked(const std::shared_ptr<TaskBuild>& b) {
     compile(b, kit_.plain,
-            [this, b](bool ok, const std::string& messages, const std::string& problem) {
+            [this, b](bool ok, const std::string& messages, const std::string& problem,
+                      const std::string& fault) {
+              if (!fault.empty()) return fault_all(b, fault);
               // A file it may not include is refused whether the code compiles or not.
               if (!problem.empty()) return fail_all(b, "not graded: " + problem);
               if (!ok) return fail_all(b, "does not compile:\n" + messages);
@@ -343,7 +375,7 @@ class Grader::Pipeline {
     struct Stage {
       std::size_t open = 0;
       bool ok = true;
-      std::string messages, problem;
+      std::string messages, problem, fault;
     };
     auto stage = std::make_shared<Stage>();
     stage->open = b->sources.size();
@@ -352,7 +384,9 @@ class Grader::Pipeline {
         stage->ok = stage->ok && o.ok;
         stage->messages += o.messages;
         if (stage->problem.empty()) stage->problem = o.problem;
-        if (--stage->open == 0) then(stage->ok, first_lines(stage->messages, 60), stage->problem);
+        if (stage->fault.empty()) stage->fault = o.fault;
+        if (--stage->open == 0)
+          then(stage->ok, first_lines(stage->messages, 60), stage->problem, stage->fault);
       });
   }
 
@@ -366,8 +400,10 @@ class Grader::Pipeline {
       if (std::all_of(o.read.begin(), o.read.end(), [&](const std::string& file) {
             return same_file(o.copy / file, b->copy / file);
           })) {
-        if (o.ok) fs::copy_file(o.path, path, fs::copy_options::overwrite_existing);
-        return done(o);
+        // The object may be gone with its build's folder (removed once graded): then compile.
+        std::error_code error;
+        if (o.ok) fs::copy_file(o.path, path, fs::copy_options::overwrite_existing, error);
+        if (!error) return done(o);
       }
     if (const auto it = compiling_.find(key); it != compiling_.end()) {
       it->second.push_back([=, this] { compile_one(b, v, source, done); });
@@ -392,6 +428,7 @@ class Grader::Pipeline {
       o.messages = stop_text(outcome.stopped, outcome.output) +
                    student_paths(outcome.output, b->copy, kit_.root);
       if (!outcome.start_error.empty()) o.messages += outcome.start_error + "\n";
+      if (!o.ok) o.fault = fault_of(outcome, "the compiler");
       const fs::path copy = fs::weakly_canonical(b->copy);
       for (const fs::path& file : read_dependencies(path.string() + ".d")) {
         const fs::path inside = fs::weakly_canonical(file).lexically_relative(copy);
@@ -404,7 +441,7 @@ class Grader::Pipeline {
         o.messages =
             "(the compiler's messages are not shown: they quote a file that is not "
             "your submission's)\n";
-      objects_[key].push_back(o);
+      if (o.fault.empty()) objects_[key].push_back(o);
       const std::vector<std::function<void()>> waiting = std::move(compiling_[key]);
       compiling_.erase(key);
       done(o);
@@ -435,6 +472,12 @@ class Grader::Pipeline {
     Command c = build_command(*b, std::move(argv), b->folder);
     c.limits.output_kept = c.limits.output_limit;
     pool_.add(std::move(c), [this, b](Outcome o) {
+      if (!o.exited || o.exit_code != 0) {
+        const std::string fault = fault_of(o, "nm");
+        return fault_all(b, fault.empty() ? "nm could not read the objects: " +
+                                                first_lines(printable(o.output), 3)
+                                          : fault);
+      }
       b->result.review = review_notes(o.output);
       const std::vector<std::string> problems = symbol_problems(o.output);
       if (!problems.empty()) {
@@ -443,11 +486,13 @@ class Grader::Pipeline {
           text += "\n" + p;
         return fail_all(b, text);
       }
-      link(b, kit_.plain, [this, b](bool ok, const std::string& messages) {
-        if (!ok) return fail_all(b, "does not link:\n" + messages);
-        for (int i = 0; i < int(b->result.tests.size()); ++i)
-          run_plain(b, i);
-      });
+      link(b, kit_.plain,
+           [this, b](bool ok, const std::string& messages, const std::string& fault) {
+             if (!fault.empty()) return fault_all(b, fault);
+             if (!ok) return fail_all(b, "does not link:\n" + messages);
+             for (int i = 0; i < int(b->result.tests.size()); ++i)
+               run_plain(b, i);
+           });
     });
   }
 
@@ -461,23 +506,32 @@ class Grader::Pipeline {
     for (const fs::path& part : kit_.library_parts.at(b->task))
       argv.push_back(part.string());
     Command c = build_command(*b, std::move(argv), b->folder);
-    pool_.add(std::move(c), [b, then, &kit = kit_](Outcome o) {
-      then(o.exited && o.exit_code == 0,
-           first_lines(student_paths(o.output, b->copy, kit.root), 30));
+    pool_.add(std::move(c), [this, b, then](Outcome o) {
+      const bool ok = o.exited && o.exit_code == 0;
+      then(ok, first_lines(student_paths(o.output, b->copy, kit_.root), 30),
+           ok ? "" : fault_of(o, "the linker"));
     });
   }
 
   void build_sanitized(const std::shared_ptr<TaskBuild>& b) {
-    compile(b, kit_.sanitized, [this, b](bool ok, const std::string& messages, const std::string&) {
-      if (!ok) return sanitized_ready(b, "it does not compile:\n" + messages);
-      link(b, kit_.sanitized, [this, b](bool linked, const std::string& link_messages) {
-        sanitized_ready(b, linked ? "" : "it does not link:\n" + link_messages);
-      });
-    });
+    compile(b, kit_.sanitized,
+            [this, b](bool ok, const std::string& messages, const std::string&,
+                      const std::string& fault) {
+              if (!fault.empty()) return sanitized_ready(b, "", fault);
+              if (!ok) return sanitized_ready(b, "it does not compile:\n" + messages, "");
+              link(b, kit_.sanitized,
+                   [this, b](bool linked, const std::string& link_messages,
+                             const std::string& link_fault) {
+                     sanitized_ready(b, linked ? "" : "it does not link:\n" + link_messages,
+                                     link_fault);
+                   });
+            });
   }
 
-  void sanitized_ready(const std::shared_ptr<TaskBuild>& b, const std::string& problem) {
+  void sanitized_ready(const std::shared_ptr<TaskBuild>& b, const std::string& problem,
+                       const std::string& fault) {
     b->sanitized_problem = problem;
+    b->sanitized_fault = fault;
     b->sanitized_ready = true;
     for (const int index : b->passed_plain)
       run_sanitized(b, index);
@@ -519,6 +573,8 @@ class Grader::Pipeline {
     const Limits limits = c.limits;
     pool_.add(std::move(c), [this, b, index, secret, limits](Outcome o) {
       TestResult& t = b->result.tests[std::size_t(index)];
+      if (const std::string fault = fault_of_test(o); !fault.empty())
+        return test_fault(b, t, fault);
       const RunVerdict v = judge(o, secret, limits, limits_text_);
       t.passed = v.passed;
       t.message = g_.settings_.raw ? v.message : without_raw_lines(v.message);
@@ -544,6 +600,7 @@ class Grader::Pipeline {
   void run_sanitized(const std::shared_ptr<TaskBuild>& b, int index) {
     TestResult& plain = b->result.tests[std::size_t(index)];
     const bool crashed = !plain.passed;  // plainly; it is here to be explained
+    if (!b->sanitized_fault.empty()) return test_fault(b, plain, b->sanitized_fault);
     if (!b->sanitized_problem.empty()) {
       if (crashed) return settle(b);
       plain.passed = false;
@@ -555,6 +612,8 @@ class Grader::Pipeline {
     const Limits limits = c.limits;
     pool_.add(std::move(c), [this, b, index, secret, limits, crashed](Outcome o) {
       TestResult& t = b->result.tests[std::size_t(index)];
+      if (const std::string fault = fault_of_test(o); !fault.empty())
+        return test_fault(b, t, fault);
       t.sanitized_seconds = o.wall_seconds;
       const RunVerdict v = judge(o, secret, limits, limits_text_);
       if (crashed) {
@@ -603,9 +662,51 @@ class Grader::Pipeline {
     t.printed_bytes = std::min(t.printed_bytes, at);
   }
 
+  // A test process that did not start, or whose sandbox could not be made: the harness never
+  // ran, so nothing of the test is known.
+  std::string fault_of_test(const Outcome& o) const {
+    if (!o.start_error.empty()) return "the grader could not start a test: " + o.start_error;
+    if (o.output.rfind("bwrap: ", 0) == 0 && o.records.empty() && o.stopped == Stop::none)
+      return "the grader could not make a test's sandbox: " +
+             o.output.substr(7, o.output.find('\n') - 7);
+    return "";
+  }
+
+  void test_fault(const std::shared_ptr<TaskBuild>& b, TestResult& t, const std::string& fault) {
+    b->result.fault = fault;
+    t.passed = false;
+    t.message = "not graded: " + fault;
+    t.printed.clear();
+    t.printed_bytes = 0;
+    settle(b);
+  }
+
   void settle(const std::shared_ptr<TaskBuild>& b) {
     if (--b->tests_open == 0) b->finish();
   }
+
+  // The grader's own fault: the task is not graded (and says why), never scored 0.
+  void fault_all(const std::shared_ptr<TaskBuild>& b, const std::string& why) {
+    b->result.fault = why;
+    for (TestResult& t : b->result.tests) {
+      t.passed = false;
+      t.message = "not graded: " + why;
+    }
+    b->finish();
+  }
+
+  // Why a command on a submission's files failed because of the grader rather than the code: it
+  // could not be started, the sandbox could not be made, or the work folder is full. "" when the
+  // failure is the code's.
+  std::string fault_of(const Outcome& o, const std::string& what) const {
+    if (!o.start_error.empty()) return "the grader could not run " + what + ": " + o.start_error;
+    if (o.output.rfind("bwrap: ", 0) == 0 && o.records.empty() && o.stopped == Stop::none)
+      return "the grader could not make the sandbox for " + what + ": " +
+             o.output.substr(7, o.output.find('\n') - 7);
+    return work_full();
+  }
+
+  std::string work_full() const { return work_folder_full(g_.settings_.work); }
 
   void fail_all(const std::shared_ptr<TaskBuild>& b, const std::string& problem) {
     b->result.problem = problem;
@@ -628,13 +729,63 @@ std::vector<SubmissionResult> Grader::run(
   // Copies with the same digest, checked byte for byte: equal copies share one build.
   std::map<std::pair<int, std::string>, std::vector<std::shared_ptr<TaskBuild>>> builds;
   int build_count = 0;
+  // A few builds at a time, in the order of the submissions: enough to keep every process slot
+  // busy, and the work folder holds the objects of these few only (each is removed when its
+  // build is done), however large the class; the first submissions are done first.
+  std::deque<std::shared_ptr<TaskBuild>> waiting;
+  int active = 0;
+  const int most_active = 2 * settings_.jobs + 1;
+  std::function<void()> start_next = [&] {
+    while (active < most_active && !waiting.empty()) {
+      std::shared_ptr<TaskBuild> next = waiting.front();
+      waiting.pop_front();
+      ++active;
+      next->on_finish.push_back([&] {
+        --active;
+        start_next();
+      });
+      pipeline.start(next);
+    }
+  };
 
+  // A task not graded because of the grader: every test failed, with why.
+  const auto not_graded = [&](std::size_t i, int task, const std::string& why) {
+    TaskResult& r = results[i].tasks[task];
+    r.task = task;
+    r.fault = why;
+    for (const TestInfo* test : tests_of_task(tests_, task, settings_.hidden)) {
+      TestResult t;
+      t.test = test;
+      t.message = "not graded: " + why;
+      r.tests.push_back(t);
+    }
+    task_done(results[i], task);
+    if (--tasks_open[i] == 0) submission_done(results[i]);
+  };
   for (std::size_t i = 0; i < submissions.size(); ++i) {
     results[i].submission = submissions[i];
-    const fs::path copies =
-        settings_.work / "submissions" / (std::to_string(i + 1) + "-" + submissions[i].name);
+    // Named by number only: no submission's name ends up in a path a command sees.
+    const fs::path copies = settings_.work / "submissions" / std::to_string(i + 1);
     for (const int task : settings_.tasks) {
-      TaskCopy copy = copy_task(submissions[i], task, kit_, copies);
+      if (!submissions[i].fault.empty()) {
+        not_graded(i, task, submissions[i].fault);
+        continue;
+      }
+      TaskCopy copy;
+      try {
+        copy = copy_task(submissions[i], task, kit_, copies);
+      } catch (const fs::filesystem_error& error) {
+        // The submission's files could not be read (gone, or not readable), or the work folder
+        // not written: the grader's problem, never the student's grade. What was copied goes, so
+        // that the others still have room.
+        const std::string full = work_folder_full(settings_.work);
+        std::error_code ignored;
+        fs::remove_all(copies / "tasks" / kit_.task_folder(task), ignored);
+        not_graded(i, task,
+                   full.empty() ? "the grader could not copy the files: " + escaped(error.what())
+                                : full + " (" + escaped(error.what()) + ")");
+        continue;
+      }
       std::shared_ptr<TaskBuild> b;
       std::vector<std::shared_ptr<TaskBuild>>& same = builds[{task, copy.digest}];
       if (copy.problem.empty())
@@ -650,6 +801,13 @@ std::vector<SubmissionResult> Grader::run(
         for (const std::string& file : kit_.task_files.at(task))
           b->sources.push_back(fs::path(file).filename().string());
         same.push_back(b);
+        // Its objects and libraries go as soon as its tests are done (the copy, small, stays
+        // to the end: later copies are compared with it).
+        if (!settings_.keep_work)
+          b->on_finish.push_back([folder = b->folder] {
+            std::error_code error;
+            fs::remove_all(folder, error);
+          });
       }
       b->on_finish.push_back([&, i, task, b, notes = copy.notes] {
         TaskResult& r = results[i].tasks[task];
@@ -659,10 +817,16 @@ std::vector<SubmissionResult> Grader::run(
         task_done(results[i], task);
         if (--tasks_open[i] == 0) submission_done(results[i]);
       });
-      if (is_new) pipeline.start(b);
+      if (is_new) waiting.push_back(b);
     }
   }
+  start_next();
   pool.run();
+  if (!settings_.keep_work) {
+    std::error_code error;
+    fs::remove_all(settings_.work / "submissions", error);
+    fs::remove_all(settings_.work / "builds", error);
+  }
   return results;
 }
 
@@ -676,7 +840,8 @@ std::vector<SubmissionResult> Grader::grade(
 // The cache: a line "task N SIGNATURE" per task measured, "---", then "VARIANT SECONDS N NAME"
 // per test. A task is measured when first graded and again once its programs change; a task
 // not graded now keeps its lines as they are.
-void Grader::calibrate(const fs::path& cache) {
+void Grader::calibrate(const fs::path& cache,
+                       const std::function<void(const std::string&)>& progress) {
   // A student release has no solutions/ to time: it carries the times the instructor's build
   // measured (another machine's, but the limits are ten times as long and at least 2 s).
   const bool shipped = kit_.solutions.empty();
@@ -714,9 +879,36 @@ void Grader::calibrate(const fs::path& cache) {
   Submission reference = find_submission(kit_.solutions, kit_);
   reference.name = "reference";
   // Both runs of every test, however the plain one ends: each variant needs its time.
+  const auto started = std::chrono::steady_clock::now();
+  std::size_t measured = 0;
+  if (progress)
+    progress("measuring the reference's time per test, task" +
+             std::string(missing.size() == 1 ? " " : "s ") +
+             [&] {
+               std::string list;
+               for (const int task : missing)
+                 list += (list.empty() ? "" : ", ") + std::to_string(task);
+               return list;
+             }() +
+             " (once per build of the kit)");
   const std::vector<SubmissionResult> results = run(
-      {reference}, true, [](auto&, int) {}, [](auto&) {});
+      {reference}, true,
+      [&](const SubmissionResult&, int task) {
+        const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        ++measured;
+        if (progress)
+          progress("  task " + std::to_string(task) + " measured (" + std::to_string(measured) +
+                   " of " + std::to_string(missing.size()) + ", " +
+                   std::to_string(std::lround(seconds)) + " s so far, about " +
+                   std::to_string(std::lround(seconds / double(measured) *
+                                              double(missing.size() - measured))) +
+                   " s left)");
+      },
+      [](auto&) {});
   settings_ = saved;
+  if (const std::string fault = results.front().fault(); !fault.empty())
+    throw std::runtime_error("the reference's times could not be measured: " + fault);
   std::string failures;
   for (const auto& [task, result] : results.front().tasks)
     for (const TestResult& t : result.tests)
@@ -732,19 +924,20 @@ void Grader::calibrate(const fs::path& cache) {
         "the kit's own solutions fail tests, so nothing can be graded "
         "fairly (rebuild the kit; if it persists, the kit is broken):" +
         failures);
-  // Written whole, then renamed: another grader reading it meanwhile sees the old or the new.
-  const fs::path partial = cache.string() + "." + std::to_string(getpid());
-  {
-    std::ofstream out(partial);
-    for (const auto& [task, signature] : signatures)
-      out << "task " << task << ' ' << signature << '\n';
-    out << "---\n";
-    for (const auto& [name, variant] : calibration_)
-      for (const auto& [test, time] : variant)
-        out << name << ' ' << time.seconds << ' ' << time.task << ' ' << test << '\n';
+  // Written whole, then renamed: another grader reading it meanwhile sees the old or the new. A
+  // cache that cannot be written costs only the measurement again next time.
+  std::ostringstream out;
+  for (const auto& [task, signature] : signatures)
+    out << "task " << task << ' ' << signature << '\n';
+  out << "---\n";
+  for (const auto& [name, variant] : calibration_)
+    for (const auto& [test, time] : variant)
+      out << name << ' ' << time.seconds << ' ' << time.task << ' ' << test << '\n';
+  try {
+    write_file(cache, out.str());
+  } catch (const std::runtime_error& error) {
+    if (progress) progress(std::string(error.what()) + " (measured again next time)");
   }
-  std::error_code error;
-  fs::rename(partial, cache, error);
 }
 
 }  // namespace springlab::grader

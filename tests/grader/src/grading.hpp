@@ -26,8 +26,9 @@ struct Settings {
   std::size_t output_kept = 64 * 1024;  ///< bytes of a test's output kept
   std::size_t output_limit = 8u << 20;  ///< bytes: printing more stops the test
   std::vector<int> tasks{1, 2, 3, 4, 5};  ///< the tasks graded
-  bool hidden = true;  ///< whether the hidden tests run too (a student's check: false)
-  bool raw = false;    ///< keep Catch2's own form of a failure (file, line, expression)
+  bool hidden = true;      ///< whether the hidden tests run too (a student's check: false)
+  bool raw = false;        ///< keep Catch2's own form of a failure (file, line, expression)
+  bool keep_work = false;  ///< keep the copies, objects and libraries (else removed as they end)
 };
 
 struct TestResult {
@@ -43,8 +44,11 @@ struct TestResult {
 struct TaskResult {
   int task = 0;
   std::vector<std::string> notes;  ///< files left out or replaced by the starter code
-  std::string problem;   ///< why no test could run (does not compile, rejected); "" otherwise
-  std::string warnings;  ///< what the compiler said of code that compiled
+  std::string problem;  ///< why no test could run (does not compile, rejected); "" otherwise
+  /// Why the task was not graded because of the grader itself (its disk full, a submission it
+  /// could not read, a process it could not start): never the student's grade. "" otherwise.
+  std::string fault;
+  std::string warnings;             ///< what the compiler said of code that compiled
   std::vector<std::string> review;  ///< calls no task needs, for the instructor (checks.hpp)
   std::vector<TestResult> tests;
   double points() const;
@@ -57,6 +61,8 @@ struct SubmissionResult {
   std::map<int, TaskResult> tasks;
   double points() const;
   double max_points() const;
+  /// The first of its tasks' faults ("task 2: ..."), "" when every task was graded.
+  std::string fault() const;
 };
 
 /// A test's wall time with the reference code, and its task.
@@ -76,8 +82,9 @@ class Grader {
   /// Grades the kit's own solutions with generous limits and keeps each test's time, for the
   /// tasks being graded whose times `cache` lacks or whose programs changed since. Throws
   /// std::runtime_error when a reference test fails: the kit is broken, and no submission could be
-  /// graded fairly.
-  void calibrate(const fs::path& cache);
+  /// graded fairly. `progress` is told of each task measured, in words.
+  void calibrate(const fs::path& cache,
+                 const std::function<void(const std::string&)>& progress = {});
 
   /// Grades every submission. `task_done` is called as each task of a submission is finished
   /// (in any order), `submission_done` once all of a submission's tasks are.

@@ -1,17 +1,21 @@
 // springlab-grade: grades any number of submissions in one run, for instructors (./lab grade) and
 // for a student's own check (./lab test --student). Exit status: 0 when every submission was
 // graded, whatever the scores (with --student: 0 only when every test passes, else 1); 1 when the
-// kit itself is broken; 2 for bad usage. See the README's instructor section.
+// kit itself is broken; 2 for bad usage; 3 when some submissions could not be graded because of
+// the grader's own disk, files or processes (the others are); 128 + N when signal N stopped it.
+// See the README's instructor section.
 #include "grading.hpp"
 #include "kit.hpp"
 #include "points.hpp"
 #include "reports.hpp"
+#include "results.hpp"
 #include "submission.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <fcntl.h>
 #include <sched.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/prctl.h>
 #include <unistd.h>
@@ -19,6 +23,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -34,44 +39,41 @@ constexpr const char* marker = ".springlab-grade";  // marks a folder this progr
 struct Options {
   std::vector<std::string> submissions;
   fs::path out = SPRINGLAB_GRADER_OUT;
-  fs::path work;  // default: beside out
+  fs::path work;  // default: under the kit's build/grade/work/
   fs::path points;
   fs::path kit = SPRINGLAB_GRADER_KIT;
   std::vector<int> tasks{1, 2, 3, 4, 5};
   bool student = false;
   bool max_points = false;
+  bool replace = false;
   Settings settings;
 };
 
-// Empties `folder` for a new run, refusing any folder this program did not make: nothing of an
-// earlier run survives, and nothing else is ever deleted. The folder's marker stays, locked until
-// this process ends: a second springlab-grade given the same folder is refused instead of emptying
-// it under the first one's feet (two terminals, or two tests at once, with one --work).
-void prepare(const fs::path& folder) {
+// Empties the work folder for a new run, refusing any folder this program did not make, and keeps
+// it locked until this process ends: a second run given the same folder is refused instead of
+// emptying it under the first one's feet.
+int take_work_folder(const fs::path& folder) {
   std::error_code error;
   if (fs::exists(folder) && !fs::is_directory(folder))
-    throw UsageError(folder.string() + " exists and is not a folder");
+    throw UsageError(escaped(folder.string()) + " exists and is not a folder");
   if (fs::exists(folder) && !fs::is_empty(folder) && !fs::exists(folder / marker))
-    throw UsageError(folder.string() + " holds files springlab-grade did not write: choose " +
-                     "another folder, or empty it yourself");
+    throw UsageError(escaped(folder.string()) + " holds files springlab-grade did not write: " +
+                     "choose another folder, or empty it yourself");
   fs::create_directories(folder, error);
-  if (error) throw UsageError("cannot make " + folder.string() + ": " + error.message());
-  const fs::path mark = folder / marker;
-  // Kept open (and locked) for the rest of the run; close-on-exec, so no test process holds it.
-  const int lock = open(mark.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (error) throw UsageError("cannot make " + escaped(folder.string()) + ": " + error.message());
+  const int lock = open((folder / marker).c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (lock < 0)
-    throw UsageError("cannot write in " + folder.string() + ": " + std::strerror(errno));
+    throw UsageError("cannot write in " + escaped(folder.string()) + ": " + std::strerror(errno));
   if (flock(lock, LOCK_EX | LOCK_NB) != 0)
-    throw UsageError(folder.string() + " is in use by another springlab-grade run: wait for it " +
-                     "to end, or give this run another --out or --work folder");
+    throw UsageError(escaped(folder.string()) + " is in use by another springlab-grade run: " +
+                     "wait for it to end, or give this run another --out or --work folder");
   for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
     if (entry.path().filename() == marker) continue;
     fs::remove_all(entry.path(), error);
-    if (error) throw UsageError("cannot empty " + folder.string() + ": " + error.message());
+    if (error)
+      throw UsageError("cannot empty " + escaped(folder.string()) + ": " + error.message());
   }
-  const std::string text = "written by springlab-grade, emptied by its next run\n";
-  if (ftruncate(lock, 0) != 0 || write(lock, text.data(), text.size()) != ssize_t(text.size()))
-    throw UsageError("cannot write in " + folder.string() + ": " + std::strerror(errno));
+  return lock;
 }
 
 // The processors this process may use: its affinity mask, and a container's CPU quota (a
@@ -92,18 +94,19 @@ int available_processors() {
   return std::max(1, count);
 }
 
+bool is_inside(const fs::path& a, const fs::path& b) {
+  const auto [end, _] = std::mismatch(b.begin(), b.end(), a.begin(), a.end());
+  return end == b.end();
+}
+
 // Grading writes nowhere near a submission: neither inside one, nor around one it would empty.
 void check_apart(const fs::path& folder, const std::vector<Submission>& submissions) {
   const fs::path f = fs::weakly_canonical(fs::absolute(folder));
-  for (const Submission& s : submissions) {
-    const auto inside = [](const fs::path& a, const fs::path& b) {
-      const auto [end, _] = std::mismatch(b.begin(), b.end(), a.begin(), a.end());
-      return end == b.end();
-    };
-    if (inside(f, s.folder) || inside(s.folder, f))
-      throw UsageError(folder.string() + " and the submission " + s.folder.string() +
+  for (const Submission& s : submissions)
+    if (!s.folder.empty() && (is_inside(f, s.folder) || is_inside(s.folder, f)))
+      throw UsageError(escaped(folder.string()) + " and the submission " +
+                       escaped(s.folder.string()) +
                        " overlap: grading never writes in or around a submission");
-  }
 }
 
 std::string run_trusted(const std::vector<std::string>& argv) {
@@ -123,22 +126,29 @@ std::string run_trusted(const std::vector<std::string>& argv) {
   return output;
 }
 
-void write_file(const fs::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+// A submission folder as the grader finds it; one it cannot read is "not graded", with why.
+Submission find_one(const std::string& folder, const Kit& kit) {
+  try {
+    return find_submission(folder, kit);
+  } catch (const fs::filesystem_error& error) {
+    Submission s;
+    s.folder = fs::absolute(folder).lexically_normal();
+    s.name = s.folder.filename().string();
+    s.fault = "the grader could not read the submission: " + escaped(error.what());
+    return s;
+  }
 }
 
 std::vector<Submission> find_all(const Options& options, const Kit& kit) {
   std::vector<Submission> found;
   std::map<std::string, std::string> seen;
   for (const std::string& folder : options.submissions) {
-    Submission s = find_submission(folder, kit);
+    Submission s = find_one(folder, kit);
     const auto [it, fresh] = seen.emplace(s.name, folder);
     if (!fresh)
-      throw UsageError("two submissions would share the name '" + printable(s.name) +
-                       "' in the gradebook: " + printable(it->second) + " and " +
-                       printable(folder) + " (rename one folder)");
+      throw UsageError("two submissions would share the name '" + escaped(s.name) +
+                       "' in the gradebook: " + escaped(it->second) + " and " + escaped(folder) +
+                       " (rename one folder)");
     found.push_back(std::move(s));
   }
   return found;
@@ -152,11 +162,48 @@ fs::path absolute_folder(const fs::path& path) {
   return a;
 }
 
+// What a submission's grade depends on in the kit and the settings: its programs, the points,
+// the limits, the tasks and whether the hidden tests run.
+std::string run_signature(const Kit& kit, const std::vector<TestInfo>& tests,
+                          const Settings& settings) {
+  std::ostringstream s;
+  std::error_code error;
+  for (const int task : settings.tasks)
+    for (const fs::path& program : {kit.programs.at(task), kit.sanitized_programs.at(task)})
+      s << program.string() << ' ' << fs::file_size(program, error) << ' '
+        << fs::last_write_time(program, error).time_since_epoch().count() << '\n';
+  for (const TestInfo& t : tests)
+    s << t.name << ' ' << t.points << ' ' << t.hidden << '\n';
+  s << settings.time_factor << ' ' << settings.time_floor << ' ' << settings.memory_mb << ' '
+    << settings.hidden << ' ' << settings.raw << '\n';
+  return s.str();
+}
+
+std::string signature_of(const std::string& run, const Submission& s, const Settings& settings) {
+  if (!s.fault.empty()) return "";
+  const std::string digest = submission_digest(s, settings.tasks);
+  if (digest.empty()) return "";
+  return std::to_string(std::hash<std::string>{}(run + digest)) + "-" +
+         std::to_string(digest.size());
+}
+
+void stop_on_signal(int signal) {
+  interrupt(signal);
+}
+
 int grade(Options options) {
-  options.out = absolute_folder(options.out);
-  options.work =
-      options.work.empty() ? options.out.parent_path() / "work" : absolute_folder(options.work);
   const Kit kit = read_kit(options.kit);
+  options.out = absolute_folder(options.out);
+  // The work folder lives under the kit's build/ (ignored by git) whatever the current folder,
+  // one per results folder, so that two runs with their own --out never share one.
+  options.work = options.work.empty()
+                     ? kit.root / "build" / "grade" / "work" /
+                           std::to_string(std::hash<std::string>{}(options.out.string()) % 1000003)
+                     : absolute_folder(options.work);
+  if (is_inside(options.out, options.work) || is_inside(options.work, options.out))
+    throw UsageError(
+        "--out and --work must be different folders, neither inside the other (--out " +
+        escaped(options.out.string()) + ", --work " + escaped(options.work.string()) + ")");
   // The tasks graded, or all for --max-points: a student's check of task 1 may have built the
   // programs of task 1 only (./lab test task1).
   std::string listing;
@@ -173,7 +220,7 @@ int grade(Options options) {
   }
   std::vector<TestInfo> tests = parse_test_list(listing);
   assign_points(tests, options.points.empty() ? kit.points : options.points);
-  if (options.max_points) {  // for the GitHub Classroom workflow of a release (./lab release)
+  if (options.max_points) {  // for the GitHub Classroom workflow of a release (./lab points)
     std::map<int, double> max;
     for (const TestInfo& t : tests)
       if (!t.hidden || !options.student) max[t.task] += t.points;
@@ -184,9 +231,9 @@ int grade(Options options) {
   if (options.submissions.empty()) throw UsageError("submission is required");
   const std::vector<Submission> submissions = find_all(options, kit);
   for (const Submission& s : submissions)
-    if (s.empty())
-      std::cerr << "springlab-grade: " << printable(s.name) << ": not one of the tasks' files "
-                << "found (graded as the starter code): is " << printable(s.folder.string())
+    if (s.fault.empty() && s.empty())
+      std::cerr << "springlab-grade: " << escaped(s.name) << ": not one of the tasks' files "
+                << "found (graded as the starter code): is " << escaped(s.folder.string())
                 << " a submission?\n";
   Settings settings = options.settings;
   settings.tasks = options.tasks;
@@ -194,25 +241,55 @@ int grade(Options options) {
   settings.hidden = !options.student;  // a student's check never shows the hidden tests
   check_apart(options.out, submissions);
   check_apart(settings.work, submissions);
-  prepare(options.out);
-  prepare(settings.work);
+  ResultsFolder out(options.out, options.replace);
+  const int work_lock = take_work_folder(settings.work);
+
+  // Grading named submissions into a folder of an earlier run: theirs are replaced, everyone
+  // else's kept; those graded before on the same files, kit and settings are kept as they are (a
+  // run stopped half way, started again, grades only the rest).
+  const std::string run = run_signature(kit, tests, settings);
+  std::vector<Submission> to_grade;
+  std::vector<std::string> signatures, kept;
+  for (const Submission& s : submissions) {
+    const std::string signature = signature_of(run, s, settings);
+    if (!options.student && out.unchanged(s.name, signature)) {
+      kept.push_back(s.name);
+      continue;
+    }
+    to_grade.push_back(s);
+    signatures.push_back(signature);
+  }
+  std::size_t others = 0;
+  for (const auto& [name, r] : out.recorded())
+    others += std::none_of(submissions.begin(), submissions.end(),
+                           [&](const Submission& s) { return s.name == name; });
+  if (!options.student && others > 0)
+    std::cerr << "springlab-grade: " << escaped(options.out.string()) << " holds " << others
+              << " other submission" << (others == 1 ? "'s" : "s'") << " results of earlier "
+              << "runs: kept, and in the gradebook (--replace empties the folder first)\n";
+  if (!kept.empty())
+    std::cerr << "springlab-grade: " << kept.size() << " submission"
+              << (kept.size() == 1 ? " was" : "s were")
+              << " graded before with the same files, kit and settings: kept as they are ("
+              << escaped(kept.front()) << (kept.size() > 1 ? ", ..." : "") << ")\n";
 
   // Whether submission code can have namespaces of its own here: said once, on the terminal and
   // (when it cannot) in review.csv.
   const Isolation isolation = Isolation::probe({kit.root, options.out, settings.work});
   std::cerr << "springlab-grade: " << isolation.describe() << "\n";
   Grader grader(kit, tests, settings, isolation);
-  std::cerr << "springlab-grade: the reference's time per test (measured once per build)\n";
-  grader.calibrate(options.kit.parent_path() / "calibration.txt");
+  grader.calibrate(options.kit.parent_path() / "calibration.txt", [](const std::string& line) {
+    std::cerr << "springlab-grade: " << line << "\n";
+  });
   if (options.student) {
     std::cerr << "springlab-grade: compiling your code, then running each test in a process of "
               << "its own, plainly and with the sanitizers (which check every memory access)\n";
-  } else {
+  } else if (!to_grade.empty()) {
     const auto hidden = std::count_if(tests.begin(), tests.end(), [&](const TestInfo& t) {
       return t.hidden && std::count(options.tasks.begin(), options.tasks.end(), t.task) > 0;
     });
-    std::cerr << "springlab-grade: grading " << submissions.size() << " submission"
-              << (submissions.size() == 1 ? "" : "s") << " (" << settings.jobs
+    std::cerr << "springlab-grade: grading " << to_grade.size() << " submission"
+              << (to_grade.size() == 1 ? "" : "s") << " (" << settings.jobs
               << " processes at once; a test may take " << grader.time_limit_text() << ")";
     if (hidden > 0)
       std::cerr << ", hidden tests included (" << hidden << ", shown to students after the due "
@@ -222,6 +299,8 @@ int grade(Options options) {
 
   bool all_passed = true;
   std::size_t finished = 0;
+  std::vector<std::string> not_graded;  // "name: why"
+  const auto started = std::chrono::steady_clock::now();
   std::map<std::string, std::set<int>> tasks_done;  // student mode: print tasks in order
   const auto task_done = [&](const SubmissionResult& r, int task) {
     if (!options.student) return;
@@ -234,42 +313,82 @@ int grade(Options options) {
       done.insert(-t);
     }
   };
+  std::map<std::string, std::string> signature_by_name;
+  for (std::size_t i = 0; i < to_grade.size(); ++i)
+    signature_by_name[to_grade[i].name] = signatures[i];
   const auto submission_done = [&](const SubmissionResult& r) {
     // Its own tests' time, not the batch's: in a batch the submissions share the machine.
     double seconds = 0.0;
     for (const auto& [task, result] : r.tasks)
       for (const TestResult& t : result.tests)
         seconds += t.seconds + t.sanitized_seconds;
-    const fs::path folder = options.out / results_folder(r.submission.name);
-    fs::create_directories(folder);
-    write_file(folder / "feedback.txt", feedback(r, kit));
-    write_file(folder / "results.json", results_json(r, seconds));
-    for (const auto& [task, result] : r.tasks)
-      write_file(folder / ("task" + std::to_string(task) + ".junit.xml"), junit_report(r, task));
-    all_passed = all_passed && r.points() == r.max_points();
+    std::string fault = r.fault();
+    try {
+      out.write(r, signature_by_name[r.submission.name], kit, seconds);
+    } catch (const std::runtime_error& error) {
+      if (fault.empty()) fault = error.what();
+    }
+    if (!fault.empty()) not_graded.push_back(escaped(r.submission.name) + ": " + fault);
+    all_passed = all_passed && fault.empty() && r.points() == r.max_points();
     ++finished;
     if (options.student) {
       std::cout << summary_feedback(r);
-    } else if (submissions.size() == 1) {
+    } else if (to_grade.size() == 1) {
       std::cout << feedback(r, kit);
     } else {
-      std::cout << "[" << finished << "/" << submissions.size() << "] "
-                << printable(r.submission.name) << ": " << points_text(r.points()) << " of "
-                << points_text(r.max_points()) << " points" << std::endl;
+      const double elapsed =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      const long left =
+          std::lround(elapsed / double(finished) * double(to_grade.size() - finished));
+      std::cout << "[" << finished << "/" << to_grade.size() << "] " << escaped(r.submission.name)
+                << ": "
+                << (fault.empty()
+                        ? points_text(r.points()) + " of " + points_text(r.max_points()) + " points"
+                        : "not graded (" + fault + ")")
+                << (finished < to_grade.size() ? " (about " + std::to_string(left) + " s left)"
+                                               : "")
+                << std::endl;
     }
   };
-  const std::vector<SubmissionResult> results =
-      grader.grade(submissions, task_done, submission_done);
-  write_file(options.out / "gradebook.csv", gradebook(results));
-  const std::string review =
-      review_list(results, isolation.namespaces() ? "" : isolation.describe());
-  if (!review.empty()) write_file(options.out / "review.csv", review);
+  // What was kept is shown as it was graded: one submission's feedback, or a line each.
+  for (const std::string& name : kept) {
+    const Recorded& r = out.recorded().at(name);
+    if (submissions.size() == 1) {
+      std::ifstream saved(options.out / results_folder(name) / "feedback.txt");
+      std::cout << saved.rdbuf();
+      continue;
+    }
+    double points = 0.0, max = 0.0;
+    for (const auto& [task, p] : r.points)
+      points += p, max += r.max_points.at(task);
+    std::cout << "[kept] " << escaped(name) << ": " << points_text(points) << " of "
+              << points_text(max) << " points (graded before on the same files)" << std::endl;
+  }
+  grader.grade(to_grade, task_done, submission_done);
+  try {
+    out.write_gradebook(isolation.namespaces() ? "" : isolation.describe());
+  } catch (const std::runtime_error& error) {
+    not_graded.push_back(std::string("the gradebook: ") + error.what() +
+                         " (each submission's own results are in its folder)");
+  }
+  close(work_lock);
   if (!options.student) {
-    std::cerr << "springlab-grade: " << options.out.string() << "/gradebook.csv, and per "
-              << "submission feedback.txt, results.json and taskN.junit.xml\n";
-    if (!review.empty())
+    std::cerr << "springlab-grade: " << escaped(options.out.string()) << "/gradebook.csv ("
+              << out.recorded().size() << " submission" << (out.recorded().size() == 1 ? "" : "s")
+              << "), and per submission feedback.txt, results.json and taskN.junit.xml\n";
+    if (fs::exists(options.out / "review.csv"))
       std::cerr << "springlab-grade: some code calls what no task needs (ending the program, "
-                << "files, threads, ...): " << options.out.string() << "/review.csv lists it\n";
+                << "files, threads, ...), or was not graded: " << escaped(options.out.string())
+                << "/review.csv lists it\n";
+  }
+  if (!not_graded.empty()) {
+    std::cerr << "springlab-grade: " << not_graded.size() << " submission"
+              << (not_graded.size() == 1 ? " was" : "s were")
+              << " not graded because of the grader itself, not of their code (run the same "
+              << "command again once it is fixed: what was graded is kept):\n";
+    for (const std::string& line : not_graded)
+      std::cerr << "  " << line << "\n";
+    return 3;
   }
   return options.student && !all_passed ? 1 : 0;
 }
@@ -288,16 +407,24 @@ int main(int argc, char** argv) {
   app.add_option("submission", options.submissions,
                  "a copy of tasks/, a student repository (its tasks/ is used) or a folder of "
                  "the loose .cpp files");
-  app.add_option("--out", options.out, "results: gradebook.csv and a folder per submission")
+  app.add_option("--out", options.out,
+                 "results: gradebook.csv and a folder per submission; the results of submissions "
+                 "not graded now are kept")
       ->capture_default_str();
-  app.add_option("--work", options.work, "private copies and builds (default: beside --out)");
+  app.add_flag("--replace", options.replace,
+               "empty --out first (else the other submissions' results there are kept)");
+  app.add_option("--work", options.work,
+                 "private copies and builds (default: the kit's build/grade/work/)");
+  app.add_flag("--keep-work", options.settings.keep_work,
+               "keep the copies, objects and libraries (removed as each is done, by default)");
   app.add_option("--jobs", options.settings.jobs,
                  "processes at once (default: the processors this machine or container allows)")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
   app.add_option("--points", options.points, "the points file (default: the kit's)");
-  app.add_option("--tasks", options.tasks, "the tasks to grade")
+  app.add_option("--tasks", options.tasks, "the tasks to grade, as 1,2,5")
       ->delimiter(',')
+      ->allow_extra_args(false)
       ->check(CLI::Range(1, 5));
   app.add_option("--time-factor", options.settings.time_factor,
                  "a test may take this many times the reference's time")
@@ -327,8 +454,20 @@ int main(int argc, char** argv) {
   }
   std::sort(options.tasks.begin(), options.tasks.end());
   options.tasks.erase(std::unique(options.tasks.begin(), options.tasks.end()), options.tasks.end());
+  // Ctrl-C, a terminal closed, kill: every test process is killed before the grader ends (and
+  // with it, should it be killed outright: each has the grader's death as its own).
+  struct sigaction stop {};
+  stop.sa_handler = stop_on_signal;
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP})
+    sigaction(signal, &stop, nullptr);
   try {
     return grade(options);
+  } catch (const Interrupted& stopped) {
+    std::cerr << "springlab-grade: stopped by " << strsignal(stopped.signal())
+              << ": every test process it had started is ended; what was graded is kept in "
+              << escaped(absolute_folder(options.out).string())
+              << " (run the same command again to grade the rest)\n";
+    return 128 + stopped.signal();
   } catch (const UsageError& error) {
     std::cerr << "springlab-grade: " << error.what() << '\n';
     return 2;

@@ -15,6 +15,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstring>
 #include <deque>
 #include <fstream>
@@ -26,6 +27,8 @@ namespace springlab::grader {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+volatile std::sig_atomic_t interrupted_by = 0;  // the signal that asked the grader to stop
 
 // A file descriptor that closes itself.
 class Fd {
@@ -327,8 +330,22 @@ void ProcessPool::add(Command command, std::function<void(Outcome)> done) {
 }
 
 void ProcessPool::run() {
-  while (!impl_->queued.empty() || !impl_->running.empty())
+  while (!impl_->queued.empty() || !impl_->running.empty()) {
+    if (interrupted_by != 0) {
+      impl_->queued.clear();
+      for (Running& r : impl_->running) {
+        ::kill(-r.pid, SIGKILL);
+        ::waitpid(r.pid, nullptr, 0);
+      }
+      impl_->running.clear();
+      throw Interrupted(interrupted_by);
+    }
     impl_->step();
+  }
+}
+
+void interrupt(int signal) {
+  interrupted_by = signal;
 }
 
 std::vector<std::string> plain_environment() {

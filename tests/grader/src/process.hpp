@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,20 @@ struct Outcome {
   std::string start_error;       ///< set when the program could not be started at all
 };
 
+/// Thrown by ProcessPool::run when the grader was asked to stop (interrupt()): every command it
+/// had started has been killed, with everything each one started.
+class Interrupted : public std::runtime_error {
+ public:
+  explicit Interrupted(int signal) : std::runtime_error("interrupted"), signal_(signal) {}
+  int signal() const { return signal_; }
+
+ private:
+  int signal_;
+};
+
+/// Asks every ProcessPool to stop at once; safe in a signal handler (SIGINT, SIGTERM, SIGHUP).
+void interrupt(int signal);
+
 /// Runs commands, at most `parallel` at once, in one thread. `done` is called with each
 /// command's outcome as it ends and may add further commands.
 class ProcessPool {
@@ -62,7 +77,8 @@ class ProcessPool {
 
   void add(Command command, std::function<void(Outcome)> done);
 
-  /// Returns once every command added, including those added by callbacks, has ended.
+  /// Returns once every command added, including those added by callbacks, has ended. Throws
+  /// Interrupted after interrupt(), its commands killed.
   void run();
 
  private:

@@ -1,9 +1,14 @@
 #include "reports.hpp"
 
+#include <fcntl.h>
+#include <unistd.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <iomanip>
 #include <sstream>
 
@@ -127,14 +132,57 @@ std::string csv(std::string field) {
 }  // namespace
 
 std::string results_folder(const std::string& name) {
-  const bool clash = name == "gradebook.csv" || name == "review.csv" || name.front() == '.';
-  return clash ? "submission-" + name : name;
+  // One folder per name whatever the names: a name that could clash with the grader's own files
+  // (or with a name so made) gets the prefix, and no other name starts with it.
+  const std::string prefix = "submission-";
+  const bool clash = name.empty() || name.front() == '.' || name.rfind("gradebook.csv", 0) == 0 ||
+                     name.rfind("review.csv", 0) == 0 || name.rfind(prefix, 0) == 0;
+  return clash ? prefix + name : name;
+}
+
+void write_file(const fs::path& file, const std::string& text) {
+  const fs::path partial = file.string() + ".partial." + std::to_string(::getpid());
+  const auto fail = [&](int error) {
+    ::unlink(partial.c_str());
+    throw std::runtime_error("cannot write " + escaped(file.string()) + ": " +
+                             std::strerror(error));
+  };
+  const int fd = ::open(partial.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail(errno);
+  for (std::size_t done = 0; done < text.size();) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int error = n < 0 ? errno : EIO;
+      ::close(fd);
+      fail(error);
+    }
+    done += std::size_t(n);
+  }
+  if (::close(fd) != 0) fail(errno);
+  if (::rename(partial.c_str(), file.c_str()) != 0) fail(errno);
 }
 
 std::string points_text(double points) {
   std::ostringstream out;
   out << std::round(points * 100.0) / 100.0;
   return out.str();
+}
+
+std::string escaped(const std::string& name) {
+  const std::string kept = printable(name);  // byte for byte, '?' where a byte was not kept
+  std::string out;
+  for (std::size_t i = 0; i < name.size(); ++i) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    if (c < 0x20 || c == 0x7f || (kept[i] == '?' && c != '?')) {
+      char hex[5];
+      std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(c));
+      out += hex;
+    } else {
+      out += char(c);
+    }
+  }
+  return out;
 }
 
 std::string printable(const std::string& text) {

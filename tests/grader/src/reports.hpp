@@ -50,10 +50,20 @@ std::string review_list(const std::vector<SubmissionResult>& results,
 /// (or hidden), which would clash: then "submission-" and the name.
 std::string results_folder(const std::string& name);
 
+/// Writes `text` to `file` whole or not at all: into a file beside it, checked as it is written
+/// and closed, then renamed over `file`. Throws std::runtime_error naming the file and why
+/// ("No space left on device").
+void write_file(const fs::path& file, const std::string& text);
+
 /// Points as people write them: "12", "2.5".
 std::string points_text(double points);
 
 /// `text` with control characters (but newlines and tabs) and invalid UTF-8 replaced by '?'.
 std::string printable(const std::string& text);
+
+/// A name (of a file, a folder) as printed anywhere: every control character, newlines and tabs
+/// included, and every byte of invalid UTF-8 written \xNN, so that no name can make a line of
+/// its own or move the terminal's cursor.
+std::string escaped(const std::string& name);
 
 }  // namespace springlab::grader

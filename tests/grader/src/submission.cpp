@@ -106,7 +106,7 @@ Submission find_submission(const fs::path& folder, const Kit& kit) {
   std::error_code error;
   fs::path root = fs::canonical(folder, error);
   if (error || !fs::is_directory(root))
-    throw UsageError("submission '" + printable(folder.string()) + "': not a folder");
+    throw UsageError("submission '" + escaped(folder.string()) + "': not a folder");
   Submission s;
   s.folder = root;
   s.name = root.filename().string();
@@ -117,7 +117,8 @@ Submission find_submission(const fs::path& folder, const Kit& kit) {
       if (entry.path().filename().string().front() != '.') inside.push_back(entry.path());
     if (inside.size() == 1 && real_folder(inside.front()) && holds_tasks(inside.front(), kit)) {
       root = inside.front();
-      s.notes.push_back("graded the files in " + root.filename().string() + "/, the only folder");
+      s.notes.push_back("graded the files in " + escaped(root.filename().string()) +
+                        "/, the only folder");
     }
   }
   const std::string linked = "/ is a link to a folder: left out (submit the files themselves)";
@@ -135,7 +136,7 @@ Submission find_submission(const fs::path& folder, const Kit& kit) {
     TaskSource& source = s.tasks[task];
     source.folder = s.layout == Layout::loose_files ? root : tasks_root / kit.task_folder(task);
     if (fs::is_symlink(source.folder))
-      source.notes.push_back(source.folder.lexically_relative(root).string() + linked);
+      source.notes.push_back(escaped(source.folder.lexically_relative(root).string()) + linked);
     if (!real_folder(source.folder)) source.folder.clear();
     for (const std::string& kit_file : files) {
       const std::string name = file_name(kit_file);
@@ -167,10 +168,11 @@ TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
   std::vector<fs::path> files, others;
   std::error_code error;
   for (const std::string& name : source.found) {
-    const std::uintmax_t size = fs::file_size(source.folder / name, error);
+    // Throws when the file is gone or cannot be read: the grader's fault, not the student's.
+    const std::uintmax_t size = fs::file_size(source.folder / name);
     if (size > largest_file) {
-      copy.problem = name + " is " + size_text(size) + ": a task's file may have at most " +
-                     size_text(largest_file);
+      copy.problem = escaped(name) + " is " + size_text(size) +
+                     ": a task's file may have at most " + size_text(largest_file);
       return copy;
     }
     files.push_back(source.folder / name);
@@ -182,18 +184,19 @@ TaskCopy copy_task(const Submission& submission, int task, const Kit& kit,
           std::find(source.found.begin(), source.found.end(), name) != source.found.end();
       if (kit_file || entry.is_directory() || other_tasks_files.count(name) > 0) continue;
       if (entry.is_symlink()) {
-        copy.notes.push_back(name + " is a link, not a file: left out (submit the file itself)");
+        copy.notes.push_back(escaped(name) +
+                             " is a link, not a file: left out (submit the file itself)");
         continue;
       }
       if (!entry.is_regular_file()) continue;
       if (entry.file_size(error) > largest_file) {
-        copy.notes.push_back(name + " is larger than 1 MB: left out");
+        copy.notes.push_back(escaped(name) + " is larger than 1 MB: left out");
         continue;
       }
       others.push_back(entry.path());
       const std::string extension = entry.path().extension().string();
       if (extension == ".cpp" || extension == ".cc" || extension == ".cxx")
-        copy.notes.push_back(name +
+        copy.notes.push_back(escaped(name) +
                              " is not compiled: only the kit's files of the task are (put "
                              "helpers in them, or in a header they include)");
     }

@@ -35,6 +35,8 @@ struct Submission {
   Layout layout = Layout::tasks_folder;
   std::map<int, TaskSource> tasks;  ///< 1-5
   std::vector<std::string> notes;   ///< what was left out or looked for elsewhere, and why
+  /// Why the grader could not read it at all (a folder it may not read): not graded, never a 0.
+  std::string fault;
   /// True when not one of the kit's files was found (a wrong folder, or an empty submission).
   bool empty() const;
 };

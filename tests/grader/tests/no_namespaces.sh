@@ -29,7 +29,7 @@ grep -q '^(every submission),,"no sandbox: namespaces cannot be had here' "$scra
   fail "review.csv does not say that there is no sandbox"
 grep -q '^solutions,,,9,,,9$' "$scratch/results/gradebook.csv" || fail "the solutions lost points"
 grep -q '^reader,,,0,,,0$' "$scratch/results/gradebook.csv" || fail "the reader got points"
-grep -q 'processes seen: ' "$scratch/results/reader/feedback.txt" || fail "the reader did not run"
+grep -q 'environment of ' "$scratch/results/reader/feedback.txt" || fail "the reader did not run"
 ! grep -q -e 'no-namespaces-secret-51d2' -e 'root:' -e 'index(row + 1, col + 1)' \
   "$scratch/results/reader/feedback.txt" || fail "the reader's feedback shows what it may not see"
 echo "no_namespaces: ok: $(grep -m1 '^springlab-grade: no sandbox' "$scratch/log" | cut -c1-140)..."
