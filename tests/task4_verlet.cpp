@@ -2,6 +2,7 @@
 // Every expectation comes from physics or from the theory of the method, computed here.
 #include "springlab/task4_verlet.hpp"
 #include "lab_testing.hpp"
+#include "probes.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/this_implementation.hpp"
@@ -88,8 +89,12 @@ TEST_CASE("Verlet (4.1): without dampers, r_{n+1} = 2 r_n - r_{n-1} + h^2 a(r_n)
   const Vectors expected = 2.0 * s.r - s.r_previous + s.h * s.h * a;
   const double error = largest(r - expected);
   CAPTURE(s.h, error);
-  if (largest(r - (2.0 * s.r - s.r_previous + s.h * a)) <= 1e-12)
-    UNSCOPED_INFO("r_{n+1} has h a where (4.1) has h^2 a");
+  const bool h_for_h2 = largest(r - (2.0 * s.r - s.r_previous + s.h * a)) <= 1e-12;
+  if (h_for_h2) UNSCOPED_INFO("r_{n+1} has h a where (4.1) has h^2 a");
+  // Otherwise what probing the step shows: its coefficients of r_n, r_{n-1} and h^2 a.
+  INFO((error > 1e-12 * largest(expected) && !h_for_h2
+            ? probe_verlet_step(verlet_step_of(implementation()))
+            : std::string()));
   CHECK(error <= 1e-12 * largest(expected));
 }
 
@@ -150,6 +155,9 @@ TEST_CASE("Verlet: with dampers, the iteration of section 4 makes (4.1) and (4.2
   else if (largest(damped.last_velocity - (s.r - s.r_previous) / h) <= 1e-12 * scale)
     why << "the dampers saw the backward difference (r_n - r_{n-1}) / h, not (4.2)'s central "
         << "(r_{n+1} - r_{n-1}) / (2h)";
+  else if (const std::string probed = probe_verlet_step(verlet_step_of(implementation()));
+           !probed.empty() && damped.evaluations >= needed)
+    why << probed.substr(std::string("likely mistake: ").size());  // what the step solves
   else
     why << loop << "after " << damped.evaluations << " evaluations of a, the v_n in (4.1) is "
         << gap << " m/s away from (4.2)'s (r_{n+1} - r_{n-1}) / (2h); repeat (4.1) and (4.2) "
@@ -187,7 +195,7 @@ TEST_CASE("Verlet (4.3): the first step makes r_{-1} by a Taylor step backwards"
   const double first_call_off = std::max(largest(first_r - r0), largest(first_v - v0));
   if (first_call_off > 0.0)
     UNSCOPED_INFO(
-        "the first evaluation of a should be (4.3)'s a(r_0, v_0), with the r and v "
+        "likely mistake: the first evaluation of a was not (4.3)'s a(r_0, v_0), with the r and v "
         "passed in");
   CHECK(first_call_off == 0.0);
   const Vectors yours = 2.0 * r0 - r;
@@ -195,15 +203,19 @@ TEST_CASE("Verlet (4.3): the first step makes r_{-1} by a Taylor step backwards"
   const auto is = [&](const Vectors& candidate) {
     return largest(yours - candidate) <= 1e-12 * largest(r0);
   };
-  std::string why = "r_{-1} (seen through (4.1) as 2 r_0 - r_1) is not (4.3)'s";
+  std::string why;
   if (is(r0 - h * v0)) why = "the h^2/2 a(r_0, v_0) term of (4.3) is missing";
   if (is(r0 + h * v0 + 0.5 * h * h * a0) || is(r0 + h * v0))
     why = "(4.3) steps forwards in time: r_{-1} is one step back, r_0 - h v_0 + ...";
   if (is(r0)) why = "r_{-1} = r_0, as if at rest: make r_{-1} by (4.3)";
   const double error = largest(yours - expected);
   CAPTURE(h, error);
-  if (!is(expected))
-    UNSCOPED_INFO(why << "; " << shown("yours", yours) << ", " << shown("(4.3)", expected));
+  if (!is(expected)) {
+    UNSCOPED_INFO("r_{-1} (seen through (4.1) as 2 r_0 - r_1): " << shown("yours", yours) << ", "
+                                                                 << shown("(4.3)", expected));
+    UNSCOPED_INFO((why.empty() ? probe_verlet_step(verlet_step_of(implementation()))
+                               : "likely mistake: " + why));
+  }
   CHECK(error <= 1e-12 * largest(r0));
 }
 
@@ -219,15 +231,18 @@ TEST_CASE("Verlet (4.4): the velocity handed back is the second-order backward d
   const auto is = [&](const Vectors& candidate) {
     return largest(v - candidate) <= 1e-10 * largest(expected);
   };
-  std::string why = "v is not (4.4)'s";
+  std::string why;
   if (largest(v - s.v) == 0.0) why = "v still holds the velocity passed in: set it by (4.4)";
   if (is((r - s.r) / s.h)) why = "v is the first-order (r_{n+1} - r_n) / h; (4.4) is second order";
   if (is((r - s.r_previous) / (2.0 * s.h)))
     why = "v is (4.2)'s v_n, the velocity at t_n; hand back (4.4)'s, at t_{n+1}";
   const double error = largest(v - expected);
   CAPTURE(s.h, error);
-  if (!is(expected))
-    UNSCOPED_INFO(why << "; " << shown("yours", v) << ", " << shown("(4.4)", expected));
+  if (!is(expected)) {
+    UNSCOPED_INFO("v handed back: " << shown("yours", v) << ", " << shown("(4.4)", expected));
+    UNSCOPED_INFO((why.empty() ? probe_verlet_step(verlet_step_of(implementation()))
+                               : "likely mistake: " + why));
+  }
   CHECK(error <= 1e-10 * largest(expected));
 }
 
@@ -240,6 +255,10 @@ TEST_CASE("Verlet: after a step the history holds r_n, the r_{n-1} of the next s
   VerletHistory history;
   const Vectors r0 = r;
   verlet_step(model, 0.01, r, v, history);
+  INFO((history.has_previous && history.previous_position.cols() == r0.cols() &&
+                largest(history.previous_position - r0) == 0.0
+            ? std::string()
+            : probe_verlet_step(verlet_step_of(implementation()))));
   CHECK(history.has_previous);
   CHECK(largest(history.previous_position - r0) == 0.0);
   const Vectors r1 = r;

@@ -2,6 +2,9 @@
 // Every expectation comes from physics or from the theory of the method, computed here.
 #include "springlab/task5_fabric.hpp"
 #include "lab_testing.hpp"
+#include "mistakes.hpp"
+#include "probes.hpp"
+#include "spring_lists.hpp"
 #include "springlab/diagnostics.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/task2_four_masses.hpp"
@@ -86,6 +89,16 @@ TEST_CASE("Bend springs: the count, two places apart along rows and columns, eac
   const SpringFamilyParameters family{true, 10.0, 0.05, 2.0};
   const std::vector<Spring> springs = bend_springs(rows, cols, family);
   CAPTURE(rows, cols);
+  // When the list differs: what differs, and what it has in common on other grid sizes.
+  const Offsets two_apart = {{0, 2}, {2, 0}};
+  const ListReport report =
+      compare_list(springs, rows, cols, two_apart).same()
+          ? ListReport{}
+          : describe_list([&](int r, int c) { return bend_springs(r, c, family); }, rows, cols,
+                          two_apart, "bend_springs", "(5.1)");
+  INFO(report.mistake);
+  INFO((report.compared.empty() ? "compared: the number of springs bend_springs returns"
+                                : report.compared));
   REQUIRE(springs.size() == std::size_t(bend_count(rows, cols)));
   std::set<std::pair<int, int>> pairs;
   for (const Spring& s : springs) {
@@ -105,6 +118,7 @@ TEST_CASE("Bend springs carry the bend family's own values", "[task5][topology]"
   const SpringFamilyParameters family{true, 11.5, 0.07, 2.5};
   for (const Spring& s : bend_springs(4, 5, family)) {
     CAPTURE(s.p, s.q, to_string(s.family), s.k, s.b, s.rest_length);
+    INFO(recognise_family(s, SpringFamily::bend, family, "(5.1)"));
     CHECK(carries(s, SpringFamily::bend, family));
   }
 }
@@ -163,6 +177,12 @@ TEST_CASE("Gravity adds m_i g to each particle's force", "[task5][gravity]") {
   const Vectors before = Vectors::Random(2, n);
   Vectors force = before;
   add_gravity(mass, g, force);
+  Vectors expected = before;
+  for (int i = 0; i < n; ++i)
+    expected.col(i) += mass[i] * g;
+  // When what was added is wrong: what probing add_gravity shows (a multiple of m_i g, ...).
+  INFO(((force - expected).norm() > 1e-12 ? probe_gravity(gravity_of(implementation()))
+                                          : std::string()));
   for (int i = 0; i < n; ++i) {
     CAPTURE(i, mass[i]);
     const std::string mistake =
@@ -217,6 +237,10 @@ TEST_CASE("Pins: hold_pinned zeroes the pinned particles' accelerations and no o
   Vectors held = a;
   const std::vector<bool> pinned{true, false, false, true, false, true};
   hold_pinned(pinned, held);
+  bool right = true;
+  for (int i = 0; i < 6; ++i)
+    right = right && Vec2(held.col(i)) == (pinned[std::size_t(i)] ? Vec2::Zero() : Vec2(a.col(i)));
+  INFO((right ? std::string() : probe_pins(pins_of(implementation()))));
   for (int i = 0; i < 6; ++i) {
     CAPTURE(i, pinned[std::size_t(i)]);
     CHECK(Vec2(held.col(i)) == (pinned[std::size_t(i)] ? Vec2::Zero() : Vec2(a.col(i))));
@@ -255,6 +279,13 @@ TEST_CASE("Wind: F_i = c (w(t, r_i) - v_i), nothing on a particle moving with th
   const Vectors before = Vectors::Random(2, 5);
   Vectors force = before;
   add_wind(wind, t, r, v, force);
+  bool right = true;
+  for (int i = 0; i < 5; ++i)
+    right = right &&
+            (force.col(i) - before.col(i) - wind.drag() * (wind.velocity(t, r.col(i)) - v.col(i)))
+                    .norm() <= 1e-12;
+  // When wrong: what probing add_wind shows (after the shapes recognised below).
+  const std::string probed = right ? "" : probe_wind(wind_of(implementation()));
   for (int i = 0; i < 5; ++i) {
     const Vec2 expected = before.col(i) + wind.drag() * (wind.velocity(t, r.col(i)) - v.col(i));
     const Vec2 added = force.col(i) - before.col(i), w = wind.velocity(t, r.col(i));
@@ -276,6 +307,7 @@ TEST_CASE("Wind: F_i = c (w(t, r_i) - v_i), nothing on a particle moving with th
             "w(t, r_i), not w at the origin");
     }
     CAPTURE(i);
+    INFO(probed);
     CHECK_THAT(Vec2(force.col(i)), IsNear(expected, 1e-12));
   }
   CHECK_THAT(Vec2(force.col(2)), IsNear(before.col(2), 1e-12));

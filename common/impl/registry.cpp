@@ -1,4 +1,5 @@
 // Every implementation build in one program: the reference and each "student's task N".
+#include "springlab/divergence.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
 
@@ -27,6 +28,14 @@ const Implementation& implementation();
 const Implementation& reference_implementation() {
   return reference::implementation();
 }
+
+namespace {
+// The diagnosis of a divergence runs the reference beside the code under test, where this
+// program holds a reference that is the kit's (not a student's code standing in for it).
+const bool reference_registered =
+    (set_diagnosis_reference(reference_is_available() ? &reference::implementation() : nullptr),
+     true);
+}  // namespace
 
 bool reference_is_available() {
 #ifdef SPRINGLAB_NO_REFERENCE

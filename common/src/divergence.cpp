@@ -6,6 +6,7 @@
 #include "springlab/diagnostics.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/grid_forces.hpp"
+#include "springlab/scene.hpp"
 #include "springlab/simulation.hpp"
 
 #include <algorithm>
@@ -132,6 +133,51 @@ class SpringsApart {
     return g;
   }
 };
+
+const Implementation* diagnosis_reference = nullptr;  // set_diagnosis_reference
+
+// Whether the kit's reference diverges on the scene at its h by time `until`: true for the
+// reference's own run, nothing where no reference is at hand (a grader's test program) or the
+// run is beyond the replay's budget.
+std::optional<bool> reference_diverges(const SceneParameters& p, const Implementation& impl,
+                                       double until, const DiagnosisBudget& budget) {
+  if (impl.student_task == 0) return true;
+  if (diagnosis_reference == nullptr) return std::nullopt;
+  const long steps = long(std::ceil(until / p.step - 1e-9));
+  if (double(p.rows) * double(p.cols) * double(steps) > budget.particle_steps) return std::nullopt;
+  DivergenceLimits quiet;
+  quiet.diagnose = false;
+  try {
+    Simulation reference(p, *diagnosis_reference, quiet);
+    reference.advance(steps);
+    reference.check();
+  } catch (const DivergenceError&) {
+    return true;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  return false;
+}
+
+// How many springs the reference makes for the scene, -1 when unknown.
+long reference_springs_of(const SceneParameters& p) {
+  if (diagnosis_reference == nullptr) return -1;
+  try {
+    return long(build_scene(p, *diagnosis_reference).springs.size());
+  } catch (const std::exception&) {
+    return -1;
+  }
+}
+
+// The largest |L - l0| / l0 of the springs at positions r.
+double strain_of(const std::vector<Spring>& springs, const Vectors& r) {
+  double largest = 0.0;
+  for (const Spring& s : springs)
+    if (s.rest_length > 0.0)
+      largest = std::max(
+          largest, std::abs((r.col(s.p) - r.col(s.q)).norm() - s.rest_length) / s.rest_length);
+  return largest;
+}
 
 // The least-squares fit F ≈ α·(kit's spring forces) + β·(kit's damper forces) over the forces the
 // run's code gave: α = β = 1 for correct forces, -1 for a sign that points the wrong way.
@@ -361,6 +407,10 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
   return estimated_critical_step(p.integrator, w, c + drag_rate, drag_rate);
 }
 
+void set_diagnosis_reference(const Implementation* reference) {
+  diagnosis_reference = reference;
+}
+
 Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, double start_time,
                               long steps, const DiagnosisBudget& budget) {
   const SceneParameters& p = start.parameters;
@@ -401,6 +451,9 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
   bool symmetry_window = true;
   double end_time = start_time;
   long replayed = 0;
+  // The largest |L - l0| / l0 at the start, and when the energy had doubled.
+  const double start_strain = strain_of(start.springs, particles.position);
+  double strain_at_growth = not_a_number;
   if (budget_steps > 0) {
     try {
       DivergenceLimits quiet;
@@ -483,7 +536,10 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
         if (k % check_every == check_every - 1 || k + 1 == budget_steps) {
           end_energy = replay.diagnostics().total();
           energy_time = t;
-          if (std::isnan(energy_doubled) && end_energy > 2 * reference) energy_doubled = t;
+          if (std::isnan(energy_doubled) && end_energy > 2 * reference) {
+            energy_doubled = t;
+            strain_at_growth = strain_of(start.springs, now.position);
+          }
         }
       }
     } catch (const std::exception&) {
@@ -682,29 +738,83 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
              "larger one; if not, look for a spring or damper force that points the wrong way, "
              "(1.1) and (1.2).";
   } else {
-    if (!std::isnan(energy_doubled)) {
+    const bool forces_right = signs.exact && std::abs(signs.alpha - 1.0) < 1e-6 &&
+                              (!signs.has_damping || std::abs(signs.beta - 1.0) < 1e-6);
+    const std::string forces_words =
+        forces_right ? "the forces are right (on " + std::to_string(fit.samples) +
+                           " evaluations they are exactly what (1.1), (1.2) and (2.3) give)"
+        : signs.exact
+            ? "the forces are " + number(signs.alpha) + " times the spring forces" +
+                  (signs.has_damping ? " plus " + number(signs.beta) + " times the damper forces"
+                                     : std::string()) +
+                  " that (1.1), (1.2) and (2.3) give (on " + std::to_string(fit.samples) +
+                  " evaluations)"
+            : "the forces kept what the kit checks";
+    const std::string large_motion =
+        "that critical step holds for small motions about rest, and here the springs start "
+        "stretched or shrunk by up to " +
+        number(100.0 * start_strain) + " % of their rest length" +
+        (std::isnan(strain_at_growth)
+             ? std::string()
+             : " (" + number(100.0 * strain_at_growth) +
+                   " % when the energy had doubled, t = " + number(energy_doubled) + " s)") +
+        ", beyond what the linear theory behind it describes";
+    // Before the code under test is blamed, or h: the kit's reference on this scene at this h.
+    const std::optional<bool> reference_too =
+        reference_diverges(p, impl, start_time + double(steps) * p.step, budget);
+    const std::string grown = std::isnan(energy_doubled)
+                                  ? std::string()
+                                  : "the total energy rose from " + number(start_energy) +
+                                        " J to " + number(end_energy) +
+                                        " J by t = " + number(energy_time) + " s; ";
+    if (reference_too && *reference_too) {
+      d.law = BrokenLaw::step_size;
+      d.time = std::isnan(energy_doubled) ? start_time : energy_doubled;
+      d.amount = d.critical.step > 0 ? d.step / d.critical.step : infinity;
+      words << "Why: " << grown
+            << (impl.student_task == 0 ? "this is the kit's reference code, and "
+                                       : "the kit's reference code diverges too on this scene at "
+                                         "this h, so ")
+            << "the step is the cause, not the code: " << step_words << ", but " << large_motion
+            << ". Make h smaller (a half or less of the critical step), or start closer to rest.";
+    } else if (reference_too) {  // the reference runs as long without diverging
+      d.law = forces_right ? BrokenLaw::step_function : BrokenLaw::energy;
+      d.time = std::isnan(energy_doubled) ? start_time : energy_doubled;
+      d.equation = forces_right ? "" : "(2.3)";
+      words << "Why: " << grown << "the kit's reference code runs this scene at this h for as "
+            << "long without diverging, so your code is the cause, not h (" << step_words
+            << "): " << forces_words << ". ";
+      const long reference_springs = long(reference_springs_of(p));
+      if (forces_right && reference_springs >= 0 && reference_springs != long(start.springs.size()))
+        words << "Your code made " << start.springs.size() << " springs where the reference makes "
+              << reference_springs << ": check the spring lists " << spring_list_equations(p)
+              << ".";
+      else if (forces_right && impl.student_task == 1 && p.integrator == "explicit-euler")
+        words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
+                 "from the values at the start of the step.";
+      else if (forces_right && impl.student_task == 4 && p.integrator == "verlet")
+        words << "Look at the step itself: verlet_step, handout section 4.";
+      else if (!forces_right)
+        words << "Check (1.1), (1.2) and how (2.3) adds them.";
+    } else if (!std::isnan(energy_doubled) && !forces_right && signs.exact) {
       d.law = BrokenLaw::energy;
       d.time = energy_doubled;
       d.amount = end_energy - start_energy;
       d.equation = "(2.3)";
-      words << "Why: the total energy rose from " << number(start_energy) << " J to "
-            << number(end_energy) << " J by t = " << energy_time << " s (twice its reference "
-            << number(reference) << " J at t = " << energy_doubled << " s), although " << step_words
-            << ": springs and dampers cannot give energy at such a step, so some spring or damper "
-               "force points the wrong way. Check the signs in (1.1) and (1.2) and how (2.3) adds "
-               "them.";
+      words << "Why: " << grown << "although " << step_words << ", " << forces_words
+            << ". Check (1.1), (1.2) and how (2.3) adds them.";
     } else {
       d.law = BrokenLaw::step_function;
-      d.time = start_time;
-      words << "Why: " << kept_words << "; " << step_words << ". ";
+      d.time = std::isnan(energy_doubled) ? start_time : energy_doubled;
+      words << "Why: " << grown << (forces_right ? forces_words : kept_words) << "; " << step_words
+            << ". ";
       if (impl.student_task == 1 && p.integrator == "explicit-euler")
         words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
                  "from the values at the start of the step.";
       else if (impl.student_task == 4 && p.integrator == "verlet")
         words << "Look at the step itself: verlet_step, handout section 4.";
       else
-        words << "The motion may have grown beyond the reach of the linear theory (large "
-                 "stretches); a smaller h helps.";
+        words << "But " << large_motion << ": a smaller h helps.";
     }
   }
   if (budget_steps > 0 && !d.replayed_all && replayed < steps && d.law != BrokenLaw::start_forces)

@@ -14,7 +14,18 @@ namespace springlab {
 
 int thread_count() {
 #ifdef _OPENMP
-  return omp_get_max_threads();
+  // OMP_NUM_THREADS can ask for any number; the kit's rows gain nothing past a few threads a
+  // processor, and libgomp's team start data on the calling thread's stack overflows it near
+  // 70,000 (a segmentation fault): at most max_threads().
+  return std::min(omp_get_max_threads(), max_threads());
+#else
+  return 1;
+#endif
+}
+
+int max_threads() {
+#ifdef _OPENMP
+  return std::max(8, 4 * omp_get_num_procs());
 #else
   return 1;
 #endif

@@ -129,8 +129,11 @@ void Panel::scene_section(Session& session) {
   int compare = int(session.compare());
   if (ImGui::Combo("compare", &compare, compare_names, 3)) session.set_compare(Compare(compare));
   ImGui::EndDisabled();
-  if (session.reference())
-    ImGui::Text("largest distance from the reference: %.3g m", session.largest_difference());
+  if (const std::optional<Comparison> c = session.comparison()) {
+    ImGui::TextWrapped("yours %s", comparison_figures(*c).c_str());
+    if (!c->remark.empty())
+      ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.3f, 1.0f), "differs: see the note above the scene");
+  }
 }
 
 void Panel::run_section(Session& session, PanelRequests& requests) {
@@ -300,10 +303,31 @@ void Panel::plots(const Session& session, const Viewport& scene_area) {
   ImGui::End();
 }
 
+// A run that differs from the reference beside it, though nothing diverged: an amber note over
+// the scene with the comparison's remark, so a large difference is seen, not only read.
+void Panel::difference_note(const Session& session, const Viewport& scene_area) {
+  const std::optional<Comparison> c = session.comparison();
+  if (!c || c->remark.empty()) return;
+  const float note_width = std::min(scene_area.width - 40.0f, 640.0f);
+  ImGui::SetNextWindowPos(ImVec2(scene_area.left + (scene_area.width - note_width) / 2, 20));
+  ImGui::SetNextWindowSize(ImVec2(note_width, 0));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.45f, 0.3f, 0.02f, 0.9f));
+  ImGui::Begin("##difference", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize |
+                   ImGuiWindowFlags_NoInputs);
+  ImGui::TextWrapped("Your run, %s", c->remark.c_str());
+  ImGui::End();
+  ImGui::PopStyleColor();
+}
+
 void Panel::banner(Session& session, const Viewport& scene_area) {
   const Problem& problem = session.problem();
   banner_shown_ = problem.kind != Problem::Kind::none;
-  if (!banner_shown_) return;
+  if (!banner_shown_) {
+    difference_note(session, scene_area);
+    return;
+  }
   const float banner_width = std::min(scene_area.width - 40.0f, 640.0f);
   ImGui::SetNextWindowPos(ImVec2(scene_area.left + (scene_area.width - banner_width) / 2, 20));
   ImGui::SetNextWindowSize(ImVec2(banner_width, 0));
@@ -321,11 +345,8 @@ void Panel::banner(Session& session, const Viewport& scene_area) {
     else
       ImGui::Text("where: the whole scene (%s)", problem.quantity.c_str());
   }
+  // The diagnosis's words are the one verdict on h and the code: nothing is added to them.
   ImGui::TextWrapped("%s", problem.detail.c_str());
-  if (problem.kind == Problem::Kind::diverged) {
-    ImGui::TextWrapped(
-        "Try a smaller h (see the critical step in the panel) or another integrator.");
-  }
   if (ImGui::Button("Reset")) session.reset();
   remember("banner reset");
   if (problem.kind == Problem::Kind::not_implemented) {

@@ -80,6 +80,7 @@ class Panel {
   void particle_section(Session& session, ViewSettings& settings, const FrameInfo& frame);
   void plots(const Session& session, const Viewport& scene_area);
   void banner(Session& session, const Viewport& scene_area);
+  void difference_note(const Session& session, const Viewport& scene_area);
   void remember(const std::string& name);
   void remember_background();
 

@@ -167,6 +167,12 @@ void print_summary(const Session& session, std::ostream& out) {
         << "; integrator " << p.integrator << ", h = " << p.step << " s, t = " << session.time()
         << " s; energy " << d.total() << " J ("
         << energy_parts(d, sim->parameters().gravity.enabled) << ")\n";
+    // Beside the reference (--compare): the same words as the runner's summary.
+    if (const std::optional<Comparison> c = session.comparison()) {
+      out << "reference: the same run with the reference's code: yours " << comparison_figures(*c)
+          << "\n";
+      if (!c->remark.empty()) out << "remark: " << c->remark << "\n";
+    }
   } else {
     out << "no simulation\n";
   }

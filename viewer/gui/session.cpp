@@ -183,6 +183,8 @@ void Session::rebuild(bool keep_state) {
       const int held = grabbed_;
       edit_each([&](Simulation& sim) { sim.set_pinned(held, true); });
     }
+    primary_start_energy_ = primary_->diagnostics().total();
+    if (reference_) reference_start_energy_ = reference_->diagnostics().total();
     if (history_.size() == 0) history_.add(time(), primary_->diagnostics());
   } catch (const InvalidParameter& error) {
     primary_.reset();
@@ -274,9 +276,10 @@ void Session::advance(long steps) {
       primary_->step();
     } catch (const std::exception& error) {
       report(error, code_ == Code::student && reference_ ? "Your code: " : "");
-      // The reference, run beside it, has come this far: say so (the kit's diagnosis of the
-      // divergence never runs the reference).
-      if (reference_ && problem_.kind == Problem::Kind::diverged && reference_is_available())
+      // The reference, run beside it, has come this far: say so, unless the diagnosis (which
+      // runs the reference itself when the forces kept every law) has said it already.
+      if (reference_ && problem_.kind == Problem::Kind::diverged && reference_is_available() &&
+          problem_.detail.find("reference code") == std::string::npos)
         problem_.detail += " The reference code, run beside yours, is still stable at this h.";
     }
     if (!reference_ || problem_.kind != Problem::Kind::none) continue;
@@ -294,6 +297,13 @@ double Session::largest_difference() const {
   const Vectors& a = primary_->particles().position;
   const Vectors& b = reference_->particles().position;
   return (a - b).colwise().norm().maxCoeff();
+}
+
+std::optional<Comparison> Session::comparison() const {
+  if (!primary_ || !reference_ || primary_->steps_taken() != reference_->steps_taken())
+    return std::nullopt;
+  return compare_runs(parameters_, record_of(*primary_, primary_start_energy_),
+                      record_of(*reference_, reference_start_energy_));
 }
 
 std::optional<double> Session::critical_step() {

@@ -3,6 +3,7 @@
 // The window only draws a Session and forwards the user's edits to it, so tests can drive it too.
 #pragma once
 
+#include "springlab/comparison.hpp"
 #include "springlab/implementation.hpp"
 #include "springlab/parameters.hpp"
 #include "springlab/simulation.hpp"
@@ -117,6 +118,9 @@ class Session {
   /// The largest distance between a particle of the student's run and the same particle of the
   /// reference's, m; 0 unless comparing.
   double largest_difference() const;
+  /// The student's run against the reference's beside it since the last rebuild
+  /// (comparison.hpp): figures and a remark; empty unless comparing.
+  std::optional<Comparison> comparison() const;
 
   /// The critical step of the chosen integrator on this scene at rest, s (0: unstable at every
   /// h, infinity: stable at every h); empty when not estimated (large scene, unknown method).
@@ -152,6 +156,7 @@ class Session {
   double owed_steps_ = 0.0;  // the fraction of a step carried to the next frame
   long dropped_steps_ = 0;
   std::unique_ptr<Simulation> primary_, reference_;
+  double primary_start_energy_ = 0.0, reference_start_energy_ = 0.0;  // J, at the last rebuild
   Problem problem_;
   History history_;
   std::set<int> toggled_pins_;  // pins the user changed, kept across rebuilds

@@ -4,6 +4,7 @@
 // written (a full disk, a closed pipe: the run stops rather than lose rows without a word).
 #include "runner/csv.hpp"
 #include "springlab/cli_values.hpp"
+#include "springlab/comparison.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/grid_forces.hpp"
 #include "springlab/implementation.hpp"
@@ -26,6 +27,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
@@ -130,7 +132,13 @@ std::string real_time(const Simulation& sim, double seconds) {
   const int threads = parallel ? thread_count() : 1;
   std::ostringstream text;
   text << ", " << std::setprecision(3) << sim.time() / seconds << " x real time (forces on "
-       << counted(std::size_t(threads), "thread") << ")";
+       << counted(std::size_t(threads), "thread");
+  // More threads asked for than the kit uses: said, not silently ignored.
+  const char* asked = std::getenv("OMP_NUM_THREADS");
+  if (parallel && asked != nullptr && std::atol(asked) > max_threads())
+    text << "; OMP_NUM_THREADS=" << std::atol(asked) << " asks for more than the kit uses, "
+         << max_threads() << " (four per processor)";
+  text << ")";
   return text.str();
 }
 
@@ -180,6 +188,18 @@ void print_stability(std::ostream& out, const SceneParameters& p) {
     out << ": small motions grow x"
         << number_apart(explicit_euler_growth_factor(model, p.step), 1.0) << " a step";
   out << '\n';
+}
+
+// Your code's run beside the reference's on the same scene and steps: the figures, and a remark
+// when they differ by more than rounding (comparison.hpp).
+void print_comparison(std::ostream& out, const Simulation& sim, const Diagnostics& start) {
+  if (!reference_is_available()) return;
+  const std::optional<Comparison> c = compare_with_reference(
+      sim.parameters(), record_of(sim, start.total()), reference_implementation());
+  if (!c) return;
+  out << "reference: the same run with the reference's code: yours " << comparison_figures(*c)
+      << '\n';
+  if (!c->remark.empty()) out << "remark: " << c->remark << '\n';
 }
 
 std::string_view how(LimitSource source) {
@@ -245,25 +265,6 @@ void print_stability_report(std::ostream& out, const SceneParameters& p,
         << p.mass << " kg / " << p.wind.drag << " N*s/m = " << 2 * p.mass / p.wind.drag << " s\n";
 }
 
-// When the student's code diverged: the reference code on the same scene and step, for as many
-// steps, as one more sentence of the report (the kit's diagnosis never runs the reference).
-std::string reference_verdict(const SceneParameters& p, const Implementation& impl, long steps) {
-  if (impl.student_task == 0 || !reference_is_available()) return "";
-  DivergenceLimits quiet;
-  quiet.diagnose = false;
-  try {
-    Simulation reference(p, reference_implementation(), quiet);
-    reference.advance(steps);
-    reference.check();
-  } catch (const DivergenceError& error) {
-    std::ostringstream out;
-    out << " The reference code diverges too on this scene at this h (at t = " << error.time()
-        << " s).";
-    return out.str();
-  }
-  return " The reference code is stable at this h on this scene for as long: look at your code.";
-}
-
 // Options that would do nothing are refused rather than ignored: the user meant something.
 void refuse_idle_options(const Options& options) {
   if (options.every && !options.csv)
@@ -315,23 +316,19 @@ Progress::Settings progress_settings() {
   return settings;
 }
 
-// A divergence of the student's code, with the reference's verdict on the same run added.
-DivergenceError with_reference_verdict(const DivergenceError& error, const Simulation& sim) {
-  const std::string verdict =
-      reference_verdict(sim.parameters(), sim.implementation(), sim.steps_taken());
-  if (verdict.empty()) return error;
-  std::string why = error.what();  // the report after "quantity: ", as the viewer shows it
-  if (const auto at = why.find(error.quantity() + ": "); at != std::string::npos)
-    why.erase(0, at + error.quantity().size() + 2);
-  return DivergenceError(error.time(), error.particle(), error.quantity(), why + verdict);
-}
-
 // Ctrl-C (SIGINT), SIGTERM or SIGHUP asks the run to stop after its current step and row: the
-// CSV then ends in whole rows, and the run says where it stopped. A second one ends it at once.
+// CSV then ends in whole rows, and the run says where it stopped. A step of a large grid can take
+// a minute on a busy machine, so the run says at once that it heard, and that a second signal
+// ends it at once.
 volatile std::sig_atomic_t stop_signal = 0;
 
 extern "C" void ask_to_stop(int signal) {
   stop_signal = signal;
+  // Only async-signal-safe calls here: write(2) of a fixed text.
+  static const char said[] =
+      "springlab-run: stopping after the current step (a large grid's step can take a while); "
+      "the same signal again stops it at once\n";
+  [[maybe_unused]] const ssize_t n = write(2, said, sizeof said - 1);
 }
 
 void stop_on_signals() {
@@ -398,9 +395,6 @@ int run(const Options& options) {
   const auto clock_start = std::chrono::steady_clock::now();
   try {
     run_steps(sim, steps, every, csv, progress);
-  } catch (const DivergenceError& error) {
-    if (progress) progress->finish();
-    throw with_reference_verdict(error, sim);
   } catch (...) {
     if (progress) progress->finish();
     throw;
@@ -410,6 +404,7 @@ int run(const Options& options) {
   if (!options.quiet) {
     print_summary(report, sim, start, wall.count());
     print_stability(report, p);
+    if (sim.implementation().student_task != 0) print_comparison(report, sim, start);
   }
   return done;
 }

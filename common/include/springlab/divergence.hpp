@@ -68,6 +68,12 @@ struct DiagnosisBudget {
 CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budget = {},
                                  double* growth = nullptr);
 
+/// The kit's reference implementation, which the diagnosis runs on the same scene at the same h
+/// before it blames the code under test or h (programs that hold it register it:
+/// common/impl/registry.cpp; a grader's test program holds no reference of its task, and does
+/// not). Null: none.
+void set_diagnosis_reference(const Implementation* reference);
+
 /// Replays `steps` steps of h from `start` (the scene as it was at time `start_time`, its
 /// parameters saying h and the integrator) with impl, watching the laws above, and diagnoses.
 /// Calls impl exactly as the run did (the same inputs in the same order), nothing else of it.

@@ -8,8 +8,12 @@
 namespace springlab {
 
 /// Threads the calling thread's later parallel work may use: 1 when OpenMP is not built in,
-/// otherwise OpenMP's own choice (OMP_NUM_THREADS, or the cores the process may run on).
+/// otherwise OpenMP's own choice (OMP_NUM_THREADS, or the cores the process may run on), at most
+/// max_threads().
 int thread_count();
+
+/// The most threads the kit uses, whatever OMP_NUM_THREADS asks: four per processor, at least 8.
+int max_threads();
 
 /// Sets thread_count() for the calling thread only (OpenMP keeps it per thread), e.g. 1 in a
 /// viewer's stepping thread so that it leaves the other core to drawing. Throws InvalidParameter

@@ -55,6 +55,7 @@ class Progress {
   std::chrono::steady_clock::time_point start_;
   double next_report_;
   bool estimated_ = false;
+  double first_unit_ = 0.0;  // s, the first unit's time (it carries the setup)
   bool line_open_ = false;
 };
 

@@ -30,6 +30,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <sstream>
 #include <string>
 
 using namespace springlab;
@@ -108,7 +109,7 @@ long resident_kb(pid_t pid) {
 }
 
 int run(const std::string& name, const std::string& worker, const std::string& library,
-        long resident_mb) {
+        long resident_mb, double wait_limit) {
   if (!receive_secret()) return 2;
   int ends[2];
   if (pipe2(ends, O_CLOEXEC) != 0) return 2;
@@ -124,10 +125,22 @@ int run(const std::string& name, const std::string& worker, const std::string& l
     _exit(127);
   }
   close(ends[1]);
-  bool memory = false;
+  bool memory = false, waited = false;
   TranscriptReader in(ends[0], [&] {
     if (resident_mb > 0 && !memory && resident_kb(pid) > resident_mb * 1024) {
       memory = true;
+      kill(pid, SIGKILL);
+    }
+    // A task function that has not answered for most of the test's time: said by name, before
+    // the grader's own clock ends the whole test without knowing where it was.
+    if (const auto open = awaited();
+        wait_limit > 0 && !waited && open && open->seconds > wait_limit) {
+      waited = true;
+      std::ostringstream why;
+      why.precision(2);
+      why << "timed out in " << open->function << ": it gave no answer for " << open->seconds
+          << " s";
+      give_up(why.str());
       kill(pid, SIGKILL);
     }
   });
@@ -158,6 +171,8 @@ int run(const std::string& name, const std::string& worker, const std::string& l
   if (WIFEXITED(status)) worker_record += "exit " + std::to_string(WEXITSTATUS(status)) + "\n";
   if (memory) worker_record += "memory " + std::to_string(resident_mb) + "\n";
   if (replay_failure()) worker_record += "stopped " + *replay_failure() + "\n";
+  if (open_when_stopped() != nullptr)
+    worker_record += "in " + std::string(open_when_stopped()) + "\n";
   const TestOutcome& outcome = test_outcome();
   const bool passed = outcome.cases_run == 1 && outcome.passed() && complete && WIFEXITED(status) &&
                       WEXITSTATUS(status) == 0;
@@ -181,9 +196,18 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc == 4 && mode == "--work") return work(argv[2], argv[3]);
-  if ((argc == 5 || argc == 7) && mode == "--run")
-    return run(argv[2], argv[3], argv[4], argc == 7 ? std::atol(argv[6]) : 0);
-  std::cerr << "usage: " << argv[0] << " --list | --run NAME WORKER LIBRARY [--resident-mb MB] | "
+  if (argc >= 5 && argc % 2 == 1 && mode == "--run") {
+    long resident_mb = 0;
+    double wait_limit = 0.0;
+    for (int i = 5; i + 1 < argc; i += 2) {
+      const std::string option = argv[i];
+      if (option == "--resident-mb") resident_mb = std::atol(argv[i + 1]);
+      if (option == "--wait-limit") wait_limit = std::atof(argv[i + 1]);
+    }
+    return run(argv[2], argv[3], argv[4], resident_mb, wait_limit);
+  }
+  std::cerr << "usage: " << argv[0]
+            << " --list | --run NAME WORKER LIBRARY [--resident-mb MB] [--wait-limit S] | "
             << "--work NAME LIBRARY (springlab-grade runs it)\n";
   return 2;
 }

@@ -2,12 +2,17 @@
 
 #include "springlab/errors.hpp"
 
+#include <chrono>
+
 namespace springlab::grading {
 namespace {
 
 TranscriptReader* in = nullptr;
 std::optional<std::string> failure;
-long calls = 0;  // replayed so far, to say which one failed
+long calls = 0;                      // replayed so far, to say which one failed
+const char* open_call = nullptr;     // the function whose answer is awaited
+const char* open_at_stop = nullptr;  // the one that was awaited when the replay stopped
+std::chrono::steady_clock::time_point waiting_since;
 
 // Something for Catch2 to report as an unknown exception, as the worker's was.
 struct ForeignException {};
@@ -28,6 +33,7 @@ const char* name_of(Function f) {
 }
 
 [[noreturn]] void stop(const std::string& why) {
+  if (open_at_stop == nullptr) open_at_stop = open_call;
   give_up(why);
   throw ReplayStopped(why);
 }
@@ -75,6 +81,11 @@ void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model,
             Eigen::Index columns = -1) {
   if (failure) throw ReplayStopped(*failure);
   ++calls;
+  open_call = name_of(f);
+  waiting_since = std::chrono::steady_clock::now();
+  struct Closed {
+    ~Closed() { open_call = nullptr; }
+  } closed;
   next({Event::call});
   const auto function = Function(in->byte());
   const auto hash = std::uint64_t(in->integer());
@@ -93,6 +104,7 @@ void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model,
         try {
           const Vectors& a = (*model)(r, v);
           next({Event::callback_return});
+          waiting_since = std::chrono::steady_clock::now();  // the code runs again from here
           if (std::uint64_t(in->integer()) != hash_of(a))
             stop("the model gave the code other accelerations than it gives the test");
         } catch (const ReplayStopped&) {
@@ -217,6 +229,17 @@ Implementation replaying(TranscriptReader& reader) {
 
 const std::optional<std::string>& replay_failure() {
   return failure;
+}
+
+const char* open_when_stopped() {
+  return open_at_stop;
+}
+
+std::optional<Awaited> awaited() {
+  if (open_call == nullptr) return std::nullopt;
+  return Awaited{
+      open_call,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - waiting_since).count()};
 }
 
 void give_up(const std::string& why) {

@@ -19,4 +19,16 @@ const std::optional<std::string>& replay_failure();
 /// Marks the replay as given up; every further call throws ReplayStopped(why).
 void give_up(const std::string& why);
 
+/// The task function whose answer the replay waits for, and for how long, s: from the call, or
+/// from the last answer to one of its callbacks. Nothing when no call is open.
+struct Awaited {
+  const char* function;
+  double seconds;
+};
+std::optional<Awaited> awaited();
+
+/// The task function whose answer was awaited when the replay stopped (the worker crashed, say,
+/// inside it), or null.
+const char* open_when_stopped();
+
 }  // namespace springlab::grading

@@ -61,6 +61,7 @@ bool Lexer::next(Token& t) {
   }
   if (i_ >= s.size()) return false;
   t.line = line_[i_];
+  t.offset = i_;
   const bool at_start = line_start_;
   line_start_ = false;
   const char c = s[i_];

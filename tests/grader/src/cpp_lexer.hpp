@@ -11,8 +11,9 @@ namespace springlab::grader {
 
 struct Token {
   enum Kind { identifier, literal, punctuator, directive } kind = punctuator;
-  std::string text;  ///< as written (a directive: its name, "include")
-  int line = 0;      ///< 1-based, of the physical line it starts on
+  std::string text;        ///< as written (a directive: its name, "include")
+  int line = 0;            ///< 1-based, of the physical line it starts on
+  std::size_t offset = 0;  ///< where it starts in the text after line splices are joined
 };
 
 class Lexer {

@@ -490,6 +490,7 @@ class Grader::Pipeline {
            [this, b](bool ok, const std::string& messages, const std::string& fault) {
              if (!fault.empty()) return fault_all(b, fault);
              if (!ok) return fail_all(b, "does not link:\n" + messages);
+             if (g_.settings_.first_failure) return run_plain(b, 0);
              for (int i = 0; i < int(b->result.tests.size()); ++i)
                run_plain(b, i);
            });
@@ -557,6 +558,13 @@ class Grader::Pipeline {
     c.secret = new_secret();
     c.limits = g_.test_limits(test, v);
     if (generous_) c.limits.wall_seconds = c.limits.cpu_seconds = 60;
+    // The harness names a task function that stops answering, before the grader's clock ends it:
+    // in the plain run only, where an endless loop shows first; in the sanitized run its earlier
+    // stop would cut short the time a memory hog has to reach the resident-memory limit.
+    if (!sanitized) {
+      c.argv.push_back("--wait-limit");
+      c.argv.push_back(std::to_string(0.8 * c.limits.wall_seconds));
+    }
     View view;
     view.bindings = {
         {kit_.programs.at(test.task), harness, false},
@@ -585,6 +593,20 @@ class Grader::Pipeline {
       // sanitizers, which can say what corrupted memory first.
       const bool crashed = !t.passed && (t.message.rfind("crashed: ", 0) == 0 ||
                                          t.message.rfind("a check failed", 0) == 0);
+      if (g_.settings_.first_failure) {
+        // In order, plainly: the next test after a pass; after the first failure, none (its
+        // crash still explained by the sanitizers).
+        if (t.passed && index + 1 < int(b->result.tests.size())) {
+          settle(b);
+          return run_plain(b, index + 1);
+        }
+        if (!t.passed)
+          for (std::size_t i = std::size_t(index) + 1; i < b->result.tests.size(); ++i) {
+            b->result.tests[i].message = "not run: the grading stopped at the first failure";
+            settle(b);
+          }
+        if (!crashed) return settle(b);
+      }
       if (!t.passed && !crashed) return settle(b);
       if (b->sanitized_ready) return run_sanitized(b, index);
       // The sanitized library is built once a test has passed plainly (or crashed): code that

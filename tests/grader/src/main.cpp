@@ -441,6 +441,9 @@ int main(int argc, char** argv) {
   app.add_flag("--raw", options.settings.raw,
                "for instructors: show each failure's test file, line and expression as Catch2 "
                "states them, after the student's wording");
+  app.add_flag("--first-failure", options.settings.first_failure,
+               "run each task's tests in order, plainly, and stop at its first failure (for "
+               "measuring feedback, not for grading)");
   app.add_flag("--max-points", options.max_points,
                "print each task's maximum (the sum of its tests' points) and grade nothing");
   app.add_option("--kit", options.kit, "the kit.toml of the build to use")->capture_default_str();

@@ -78,6 +78,32 @@ const std::string forbidden_text =
 // Why the worker (the process running the submission's code) did not finish the test, in words;
 // "" when it did, and the test's own first failure is the reason.
 std::string worker_ending(const std::string& record, const std::string& output,
+                          const Limits& limits, const LimitsText& text);
+
+// The same, saying which of the task's functions was running when the worker ended, where a
+// task function was (the harness knows which call it awaited an answer to).
+std::string worker_ending_where(const std::string& record, const std::string& output,
+                                const Limits& limits, const LimitsText& text) {
+  const auto w = fields_of(record);
+  std::string words = worker_ending(record, output, limits, text);
+  if (words.empty() || w.count("in") == 0 || words.rfind("timed out in ", 0) == 0 ||
+      words.find(w.at("in")) != std::string::npos)
+    return words;
+  const std::string function = w.at("in");
+  if (words.rfind("a check failed", 0) == 0 || words.rfind("crashed", 0) == 0 ||
+      words.rfind("memory error", 0) == 0 || words.rfind("exited before", 0) == 0 ||
+      words.rfind("undefined behaviour", 0) == 0) {
+    if (words.rfind("a check failed: ", 0) == 0) {
+      words.insert(14, " while your " + function + " was running");
+    } else {
+      const auto line_end = std::min(words.find('\n'), words.size());
+      words.insert(line_end, " (while your " + function + " was running)");
+    }
+  }
+  return words;
+}
+
+std::string worker_ending(const std::string& record, const std::string& output,
                           const Limits& limits, const LimitsText& text) {
   const auto w = fields_of(record);
   const std::string stopped = w.count("stopped") > 0 ? w.at("stopped") : "";
@@ -85,6 +111,9 @@ std::string worker_ending(const std::string& record, const std::string& output,
     return "stopped: your code asked the system for something tests never need (" +
            system_call_name(std::atol(stopped.c_str() + 10)) + forbidden_text;
   if (stopped.rfind("refused ", 0) == 0) return "not run: " + stopped.substr(8);
+  if (stopped.rfind("timed out in ", 0) == 0)
+    return stopped + ", and the test may take " + text.time +
+           " in all: your function did not return (an endless loop in it?)";
   if (w.count("memory") > 0) return "used more than " + w.at("memory") + " MB of memory: stopped";
   const bool finished = w.count("complete") > 0 && w.at("complete") == "1" && w.count("exit") > 0 &&
                         w.at("exit") == "0";
@@ -171,7 +200,7 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
   const auto newline = payload.find('\n');
   std::string message = newline == std::string::npos ? "" : payload.substr(newline + 1);
   if (message.empty()) message = "no check ran";
-  const std::string why = worker_ending(worker_record->second, o.output, limits, text);
+  const std::string why = worker_ending_where(worker_record->second, o.output, limits, text);
   if (!why.empty()) return {false, why};
   if (message.find("std::bad_alloc") != std::string::npos && limits.address_space_mb > 0)
     message += "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) + " MB)";

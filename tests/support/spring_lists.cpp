@@ -1,0 +1,317 @@
+#include "spring_lists.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <sstream>
+
+namespace springlab::testing {
+namespace {
+
+using Pair = std::pair<int, int>;
+
+// Grids the probes try besides the test's own: rows and columns apart, both orders, none square.
+const std::vector<Pair> probe_sizes = {{2, 3}, {3, 2}, {3, 4}, {4, 3}, {3, 5}, {5, 4}};
+
+std::string where(int index, int cols) {
+  return "[" + std::to_string(index / cols) + ", " + std::to_string(index % cols) + "]";
+}
+
+std::string pair_text(const Pair& pair, int cols) {
+  return where(pair.first, cols) + "-" + where(pair.second, cols);
+}
+
+std::string pairs_text(const std::vector<Pair>& pairs, int cols, std::size_t shown = 4) {
+  std::string text;
+  for (std::size_t i = 0; i < std::min(shown, pairs.size()); ++i)
+    text += (i == 0 ? "" : ", ") + pair_text(pairs[i], cols);
+  if (pairs.size() > shown) text += ", ... (" + std::to_string(pairs.size()) + " in all)";
+  return text;
+}
+
+std::string direction_name(const Pair& offset) {
+  const auto [di, dj] = offset;
+  if (di == 0 && dj == 1) return "to the right neighbour";
+  if (di == 1 && dj == 0) return "to the neighbour below";
+  if (di == 1 && dj == 1) return "along the down-right diagonal";
+  if (di == 1 && dj == -1) return "along the down-left diagonal";
+  if (di == 0 && dj == 2) return "two to the right";
+  if (di == 2 && dj == 0) return "two below";
+  return "with the offset (" + std::to_string(di) + ", " + std::to_string(dj) + ")";
+}
+
+// The offset of an expected pair p < q: q's row and column minus p's.
+Pair offset_of(const Pair& pair, int cols) {
+  return {pair.second / cols - pair.first / cols, pair.second % cols - pair.first % cols};
+}
+
+// Where a pair lies, as a predicate over its rows and columns: what missing pairs may share.
+struct Place {
+  std::string words;  // completes "... springs <words>"
+  std::function<bool(const Pair&, int rows, int cols)> holds;
+};
+
+const std::vector<Place>& places() {
+  static const std::vector<Place> all = {
+      {"everywhere", [](const Pair&, int, int) { return true; }},
+      {"that reach the last column",
+       [](const Pair& p, int, int cols) {
+         return std::max(p.first % cols, p.second % cols) == cols - 1;
+       }},
+      {"that start in the first column",
+       [](const Pair& p, int, int cols) { return std::min(p.first % cols, p.second % cols) == 0; }},
+      {"that reach the last row",
+       [](const Pair& p, int rows, int cols) { return p.second / cols == rows - 1; }},
+      {"in the first row (joining it to the next)",
+       [](const Pair& p, int, int cols) { return p.first / cols == 0; }},
+      {"below the first row", [](const Pair& p, int, int cols) { return p.first / cols >= 1; }},
+      {"that end in the last column of a row (the last of each row)",
+       [](const Pair& p, int, int cols) { return p.second % cols == cols - 1; }},
+  };
+  return all;
+}
+
+// The subsets of the family's directions, each one alone first, then all together.
+std::vector<std::vector<Pair>> direction_sets(const Offsets& offsets) {
+  std::vector<std::vector<Pair>> sets;
+  for (const Pair& o : offsets)
+    sets.push_back({o});
+  if (offsets.size() > 1) sets.push_back(offsets);
+  return sets;
+}
+
+std::string directions_text(const std::vector<Pair>& directions) {
+  std::string text;
+  for (std::size_t i = 0; i < directions.size(); ++i)
+    text += (i == 0                       ? ""
+             : i + 1 == directions.size() ? " and "
+                                          : ", ") +
+            direction_name(directions[i]);
+  return text;
+}
+
+// The springs of the family with these directions at this place, on a rows × cols grid.
+std::vector<Pair> selected(int rows, int cols, const Offsets& offsets,
+                           const std::vector<Pair>& directions, const Place& place) {
+  std::vector<Pair> result;
+  for (const Pair& pair : expected_pairs(rows, cols, offsets))
+    if (std::find(directions.begin(), directions.end(), offset_of(pair, cols)) !=
+            directions.end() &&
+        place.holds(pair, rows, cols))
+      result.push_back(pair);
+  return result;
+}
+
+// The list a function returns for a grid, or nothing when it throws there.
+std::optional<std::vector<Spring>> list_of(const SpringList& make, int rows, int cols) {
+  try {
+    return make(rows, cols);
+  } catch (...) {
+    return std::nullopt;
+  }
+}
+
+// What the missing pairs have in common on every size tried, in words, or "".
+std::string missing_in_common(const SpringList& make, const Offsets& offsets,
+                              const ListDifference& here) {
+  if (here.missing.empty()) return "";
+  for (const std::vector<Pair>& directions : direction_sets(offsets))
+    for (const Place& place : places()) {
+      bool everywhere_same = true;
+      for (const auto& [rows, cols] : probe_sizes) {
+        const auto got = list_of(make, rows, cols);
+        if (!got) return "";
+        const ListDifference d = compare_list(*got, rows, cols, offsets);
+        std::vector<Pair> want = selected(rows, cols, offsets, directions, place);
+        everywhere_same = everywhere_same && d.missing == want && !want.empty();
+        if (!everywhere_same) break;
+      }
+      if (!everywhere_same) continue;
+      std::string words =
+          "every spring " + directions_text(directions) + " " +
+          (place.words == "everywhere" ? std::string("is missing") : place.words + " is missing") +
+          ", and no other, on every grid tried (" + std::to_string(probe_sizes.size()) +
+          " sizes from 2x3 to 5x4)";
+      // What such a set is, when the set itself says it.
+      const bool one_direction = directions.size() == 1 && offsets.size() == 2;
+      if (one_direction && place.words == "everywhere")
+        words += std::find(offsets.begin(), offsets.end(), Pair{1, 1}) != offsets.end()
+                     ? ": one diagonal per cell"
+                     : ": one of the two directions";
+      else if (place.words == "that reach the last column" ||
+               place.words == "that reach the last row")
+        words += ": a loop bound one too small";
+      return words;
+    }
+  return "";
+}
+
+// What the extra pairs are, in words: joins across the end of a row, other families' neighbours.
+std::string extras_text(const ListDifference& d, const Offsets& offsets) {
+  if (d.extra.empty()) return "";
+  long wraps = 0, others = 0;
+  std::map<Pair, long> by_offset;
+  for (const Pair& pair : d.extra) {
+    const int step = pair.second - pair.first;
+    bool wrap = false;
+    for (const auto& [di, dj] : offsets)
+      wrap = wrap || step == di * d.cols + dj;
+    (wrap ? wraps : others) += 1;
+    if (!wrap) ++by_offset[offset_of(pair, d.cols)];
+  }
+  std::ostringstream text;
+  if (wraps > 0)
+    text << wraps << " of them wrap around a row's end (their index differs as a neighbour's "
+         << "does, i*cols + j + offset, but they are on different rows: the loop over j runs "
+         << "to the row's last particle)";
+  if (others > 0) {
+    if (wraps > 0) text << "; ";
+    text << others << " join particles";
+    bool first = true;
+    for (const auto& [offset, count] : by_offset) {
+      text << (first ? " " : ", ") << direction_name(offset) << " (" << count << ")";
+      first = false;
+    }
+    text << ": check the index formula (2.1), i*cols + j, and which neighbours each particle "
+            "joins";
+  }
+  return text.str();
+}
+
+// The count's formula in rows r and columns c over the sizes tried, a r c + b r + c' c + d with
+// whole coefficients, or "" when no such formula fits.
+std::string count_formula(const std::function<double(int, int)>& count) {
+  Eigen::MatrixXd a(long(probe_sizes.size()), 4);
+  Eigen::VectorXd y(long(probe_sizes.size()));
+  for (std::size_t i = 0; i < probe_sizes.size(); ++i) {
+    const auto [r, c] = probe_sizes[i];
+    a.row(long(i)) << double(r) * c, r, c, 1.0;
+    y[long(i)] = count(r, c);
+    if (std::isnan(y[long(i)])) return "";
+  }
+  const Eigen::Vector4d x = a.colPivHouseholderQr().solve(y);
+  if ((a * x - y).norm() > 1e-6) return "";
+  std::ostringstream text;
+  const char* terms[] = {"rc", "r", "c", ""};
+  bool first = true;
+  for (int i = 0; i < 4; ++i) {
+    const long k = std::lround(x[i]);
+    if (std::abs(x[i] - double(k)) > 1e-6) return "";
+    if (k == 0) continue;
+    if (first)
+      text << (k < 0 ? "-" : "");
+    else
+      text << (k < 0 ? " - " : " + ");
+    if (std::abs(k) != 1 || terms[i][0] == '\0') text << std::abs(k);
+    text << terms[i];
+    first = false;
+  }
+  return first ? "0" : text.str();
+}
+
+}  // namespace
+
+std::set<std::pair<int, int>> expected_pairs(int rows, int cols, const Offsets& offsets) {
+  std::set<Pair> pairs;
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j)
+      for (const auto& [di, dj] : offsets) {
+        const int i2 = i + di, j2 = j + dj;
+        if (i2 < 0 || i2 >= rows || j2 < 0 || j2 >= cols) continue;
+        pairs.insert(std::minmax(i * cols + j, i2 * cols + j2));
+      }
+  return pairs;
+}
+
+bool ListDifference::same() const {
+  return missing.empty() && extra.empty() && doubled.empty() && outside.empty() && self.empty();
+}
+
+ListDifference compare_list(const std::vector<Spring>& got, int rows, int cols,
+                            const Offsets& offsets) {
+  ListDifference d;
+  d.rows = rows;
+  d.cols = cols;
+  d.springs = long(got.size());
+  const std::set<Pair> want = expected_pairs(rows, cols, offsets);
+  d.expected = long(want.size());
+  std::map<Pair, int> seen;
+  for (const Spring& s : got) {
+    const Pair pair = std::minmax(s.p, s.q);
+    if (pair.first < 0 || pair.second >= rows * cols) {
+      d.outside.push_back({s.p, s.q});
+      continue;
+    }
+    if (s.p == s.q) {
+      d.self.push_back(pair);
+      continue;
+    }
+    if (++seen[pair] == 2) d.doubled.push_back(pair);
+  }
+  d.distinct = long(seen.size());
+  for (const Pair& pair : want)
+    if (seen.count(pair) == 0) d.missing.push_back(pair);
+  for (const auto& [pair, count] : seen)
+    if (want.count(pair) == 0) d.extra.push_back(pair);
+  return d;
+}
+
+ListReport describe_list(const SpringList& make, int rows, int cols, const Offsets& offsets,
+                         const std::string& name, const std::string& equation) {
+  const auto here_list = list_of(make, rows, cols);
+  if (!here_list) return {};
+  const ListDifference d = compare_list(*here_list, rows, cols, offsets);
+  if (d.same()) return {};
+  std::ostringstream out;
+  out << "compared: the springs " << name << "(" << rows << ", " << cols << ") returns, as pairs "
+      << "[row, col]-[row, col]: " << d.springs << " spring" << (d.springs == 1 ? "" : "s") << ", "
+      << d.distinct << " distinct pair" << (d.distinct == 1 ? "" : "s")
+      << " inside the grid, where " << equation << " gives " << d.expected << "\n";
+  if (!d.missing.empty()) out << "missing: " << pairs_text(d.missing, cols) << "\n";
+  if (!d.extra.empty()) out << "not in " << equation << ": " << pairs_text(d.extra, cols) << "\n";
+  if (!d.doubled.empty()) out << "joined more than once: " << pairs_text(d.doubled, cols) << "\n";
+  if (!d.outside.empty())
+    out << "with an index outside the grid (0 to " << rows * cols - 1 << "): " << d.outside.size()
+        << ", e.g. " << d.outside.front().first << "-" << d.outside.front().second << "\n";
+  if (!d.self.empty()) out << "joining a particle to itself: " << d.self.size() << "\n";
+  ListReport report;
+  report.compared = out.str();
+  if (!report.compared.empty() && report.compared.back() == '\n') report.compared.pop_back();
+
+  // What the differences have in common, measured on several sizes.
+  std::vector<std::string> findings;
+  if (const std::string missing = missing_in_common(make, offsets, d); !missing.empty())
+    findings.push_back(missing);
+  if (!d.doubled.empty() && d.doubled.size() == std::size_t(d.distinct) && d.extra.empty() &&
+      d.missing.empty())
+    findings.push_back("each pair is joined twice (" + std::to_string(d.springs) + " springs for " +
+                       std::to_string(d.distinct) + " pairs)");
+  else if (!d.doubled.empty())
+    findings.push_back(std::to_string(d.doubled.size()) + " pair" +
+                       (d.doubled.size() == 1 ? " is" : "s are") + " joined more than once");
+  if (const std::string extras = extras_text(d, offsets); !extras.empty())
+    findings.push_back(std::to_string(d.extra.size()) + " pair" + (d.extra.size() == 1 ? "" : "s") +
+                       " not in " + equation + ": " + extras);
+  if (!d.outside.empty())
+    findings.push_back(
+        "some indices are outside the grid: check the index formula (2.1), "
+        "i*cols + j, and the loops' bounds (an index out of range)");
+  const std::string got_count = count_formula([&](int r, int c) {
+    const auto list = list_of(make, r, c);
+    return list ? double(compare_list(*list, r, c, offsets).distinct) : std::nan("");
+  });
+  const std::string want_count =
+      count_formula([&](int r, int c) { return double(expected_pairs(r, c, offsets).size()); });
+  if (!got_count.empty() && got_count != want_count)
+    findings.push_back("on the grids tried (r rows, c columns) the distinct pairs number " +
+                       got_count + " where " + equation + " gives " + want_count);
+  for (std::size_t i = 0; i < findings.size(); ++i)
+    report.mistake +=
+        (i == 0 ? "likely mistake: " + name + ", " + equation + ": " : "; ") + findings[i];
+  return report;
+}
+
+}  // namespace springlab::testing
