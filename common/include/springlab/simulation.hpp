@@ -116,6 +116,7 @@ class Simulation {
   void restart_stretch();
   /// diagnose_divergence's words on the steps since restart_stretch, or "" without diagnose.
   std::string diagnosis() const;
+  std::string settling_facts() const;  // why a student's Verlet step that gave up is not h's
 
   Scene scene_;
   const Implementation* impl_;

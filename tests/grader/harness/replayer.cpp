@@ -53,7 +53,9 @@ Event next(std::initializer_list<Event> want) {
   stop("the code's answers do not fit this test (event " + std::to_string(int(e)) + ")");
 }
 
-[[noreturn]] void rethrow_relayed(const std::exception_ptr& model_exception) {
+// `function`: the task function that threw, named in a standard exception's message, since the
+// test that catches it sees only the message.
+[[noreturn]] void rethrow_relayed(const std::exception_ptr& model_exception, const char* function) {
   const auto kind = Thrown(in->byte());
   const int task = int(in->integer());
   const std::string message = in->text(4096);
@@ -66,7 +68,7 @@ Event next(std::initializer_list<Event> want) {
       if (model_exception) std::rethrow_exception(model_exception);
       stop("the code says it passed on an error of the model, but the model raised none");
     case Thrown::standard:
-      throw std::runtime_error(message);
+      throw std::runtime_error("your " + std::string(function) + " threw '" + message + "'");
     case Thrown::other:
       throw ForeignException{};
   }
@@ -118,7 +120,7 @@ void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model,
       case Event::result:
         return read();
       default:
-        rethrow_relayed(model_exception);
+        rethrow_relayed(model_exception, name_of(f));
     }
   }
 }

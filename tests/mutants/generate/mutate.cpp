@@ -275,11 +275,14 @@ std::string first_failure(const std::string& feedback, int task) {
                    section.find("does not compile") != std::string::npos
                ? section
                : "";
-  const auto next = section.find(" ... ", fail + 10);
-  const auto line_start = next == std::string::npos ? std::string::npos : section.rfind('\n', next);
-  return section.substr(
-      section.rfind('\n', fail) + 1,
-      line_start == std::string::npos ? std::string::npos : line_start - section.rfind('\n', fail));
+  // The next test's line: two spaces of indent, where a failure's own lines have eight (they may
+  // hold " ... " too: "(5 in all)" lists).
+  const auto begin = section.rfind('\n', fail) + 1;
+  auto line_start = section.find('\n', fail + 1);
+  while (line_start != std::string::npos && section.compare(line_start + 1, 3, "   ") == 0)
+    line_start = section.find('\n', line_start + 1);
+  return section.substr(begin,
+                        line_start == std::string::npos ? std::string::npos : line_start - begin);
 }
 
 int judge(const fs::path& out, const fs::path& results, char half) {
@@ -320,13 +323,21 @@ int judge(const fs::path& out, const fs::path& results, char half) {
     const auto message_at = first.find('\n') + 1;
     const std::string message = first.substr(message_at, first.find('\n', message_at) - message_at);
     const std::string file_name = file.substr(file.find('/') + 1);
+    const auto names_function = [&](const std::string& name) {
+      return message.find(" in " + name) != std::string::npos ||
+             message.find("your " + name + " ") != std::string::npos;
+    };
+    bool message_about_other = false;
+    for (const auto& entry : names_of)
+      if (entry.first != function && names_function(entry.first)) message_about_other = true;
     if (mistake_at == std::string::npos &&
-        (message.find(file_name) != std::string::npos ||
-         message.find(" in " + function) != std::string::npos ||
-         message.find("your " + function) != std::string::npos)) {
+        (message.find(file_name) != std::string::npos || names_function(function))) {
       verdict = "named";
       ++named;
       ++by_rule[rule].second;
+    } else if (mistake_at == std::string::npos && message_about_other) {
+      verdict = "WRONG";  // a crash or a limit put on another function
+      ++wrong;
     } else if (mistake_at != std::string::npos) {
       const std::string mistake =
           first.substr(mistake_at, first.find('\n', mistake_at) - mistake_at);
