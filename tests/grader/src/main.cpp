@@ -260,9 +260,11 @@ int grade(Options options) {
     signatures.push_back(signature);
   }
   std::size_t others = 0;
-  for (const auto& [name, r] : out.recorded())
+  for (const auto& record : out.recorded()) {
+    const auto& name = record.first;  // a named copy: Clang 14 cannot capture a structured binding
     others += std::none_of(submissions.begin(), submissions.end(),
                            [&](const Submission& s) { return s.name == name; });
+  }
   if (!options.student && others > 0)
     std::cerr << "springlab-grade: " << escaped(options.out.string()) << " holds " << others
               << " other submission" << (others == 1 ? "'s" : "s'") << " results of earlier "
