@@ -55,6 +55,7 @@ std::string method_name(std::string_view integrator) {
   if (integrator == "velocity-verlet") return "velocity Verlet";
   if (integrator == "rk4") return "RK4";
   if (integrator == "implicit-euler") return "implicit Euler";
+  if (integrator == "xpbd") return "XPBD";
   return std::string(integrator);
 }
 
@@ -350,15 +351,16 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
         *growth = polynomial_growth_factor(lambda, p.integrator, p.step);
       return {critical, LimitSource::exact_formula};
     }
-    const CriticalStep critical = critical_step_of(model, p.integrator);
-    if (growth && p.step > critical.step && p.integrator != "implicit-euler")
+    const CriticalStep critical = critical_step_of(model, p.integrator, p.xpbd.substeps);
+    if (growth && p.step > critical.step && p.integrator != "implicit-euler" &&
+        p.integrator != "xpbd")
       *growth = step_growth_factor(model, p.integrator, p.step);
     return critical;
   }
   const double w = highest_frequency_bound(scene.springs, rest, particles.mass, particles.pinned);
   double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
   const double drag_rate = p.wind.enabled ? p.wind.drag / particles.mass.minCoeff() : 0.0;
-  return estimated_critical_step(p.integrator, w, c + drag_rate, drag_rate);
+  return estimated_critical_step(p.integrator, w, c + drag_rate, drag_rate, p.xpbd.substeps);
 }
 
 Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, double start_time,
