@@ -77,7 +77,7 @@ TEST_CASE("XPBD: substeps and iterations are parameters with ranges", "[integrat
              Contains("xpbd.substeps") && Contains("1 <= xpbd.substeps <= 10000") &&
                  Contains("whole number"));
   CHECK_THAT(rejection([&] { set_parameter(p, "xpbd.iterations", "2.5"); }),
-             Contains("xpbd.iterations") && Contains("\"2.5\""));
+             Contains("xpbd.iterations = 2.5") && Contains("whole number"));
   CHECK(is_integrator_name("xpbd"));
 }
 
@@ -157,22 +157,26 @@ TEST_CASE("XPBD: more iterations approach the converged substep, not the exact m
 }
 
 TEST_CASE("XPBD: the springs keep the total momentum", "[integrators][xpbd][momentum]") {
-  // Each projection moves p and q by w_p dl and -w_q dl: momenta m_p w_p dl = dl and -dl.
+  // Each projection moves p and q by w_p dl and -w_q dl: momenta m_p w_p dl = dl and -dl. What
+  // is left is rounding: v = (x - r)/s turns a position's last bit (2e-16 m of 2 m) into
+  // 2e-16 * 2 / s m/s, 3e-12 m/s at s = 1.4e-4 s, on each of 9 particles of 0.2 kg, every
+  // substep; the bound allows a hundred times that, as the other methods' test does (1e-10).
   const int iterations = GENERATE(1, 3);
   Scene scene = build_scene(xpbd(task_scene(4), 7, iterations), implementation());
   randomise(scene.particles, 0.2, 0.8, 71);
   Simulation sim(std::move(scene), implementation());
   const double worst = momentum_drift(sim, 500);
   CAPTURE(iterations, worst);
-  CHECK(worst <= 1e-12);
+  CHECK(worst <= 1e-10);
   CHECK(sim.integrator().solver_work().projections == 500L * 7 * iterations * 20);
 }
 
 TEST_CASE("XPBD: a mirror-symmetric start stays symmetric up to the method's own error",
           "[integrators][xpbd][symmetry]") {
   // Gauss–Seidel visits the springs in list order, which the mirror image reverses in part, so
-  // XPBD is not exactly symmetric. The asymmetry is part of its error: it is below the error
-  // against the reference and shrinks at least as fast as the substep.
+  // XPBD is not exactly symmetric. The asymmetry is a small part of its error: it is below a
+  // twentieth of the error against the reference (by the triangle inequality it could be up to
+  // twice it) and shrinks at least as fast as the substep.
   SceneParameters p = task_scene(4);
   p.displaced = "7";  // the bottom middle: left-right symmetric
   p.displacement = Vec2(0.0, -0.3);
@@ -200,15 +204,16 @@ TEST_CASE("XPBD: a mirror-symmetric start stays symmetric up to the method's own
   }
   CAPTURE(asymmetry, error);
   for (std::size_t i = 0; i < asymmetry.size(); ++i)
-    CHECK(asymmetry[i] < error[i]);
+    CHECK(asymmetry[i] < 0.05 * error[i]);
   CHECK(log_slope(substep, asymmetry) >= 0.9);
 }
 
 TEST_CASE("XPBD: a rigid limit (k = 1e9 N/m) stays finite and keeps the springs' lengths",
           "[integrators][xpbd][stiff]") {
   // Compliance 1/k -> 0: each projection tends to -C/(w_p + w_q), a rigid rod, and the
-  // denominator (k s^2 + b s) W + 1 stays above 1. The pulled-out particle is snapped back;
-  // after that the strain stays below what it was at the start and the energy never grows.
+  // denominator (k s^2 + b s) W + 1 stays above 1. The pulled-out particle is snapped back in
+  // the first step; after it the springs keep their lengths to a thousandth of the start's
+  // stretch and the energy never grows.
   SceneParameters p = xpbd(task_scene(4), 10, 1);
   p.structural.k = p.shear.k = 1e9;
   Simulation sim(p, implementation());
@@ -223,7 +228,7 @@ TEST_CASE("XPBD: a rigid limit (k = 1e9 N/m) stays finite and keeps the springs'
   CAPTURE(start_strain, strain, energy, largest_energy);
   CHECK(sim.particles().position.allFinite());
   CHECK(sim.particles().velocity.allFinite());
-  CHECK(strain < 0.1 * start_strain);
+  CHECK(strain < 1e-3 * start_strain);
   CHECK(largest_energy <= energy * (1 + 1e-9));
 }
 

@@ -241,6 +241,11 @@ std::vector<StepLimit> hanging_critical_steps(const Scenario& s, const StudyOpti
     out.method = method;
     out.about = about;
     const std::string integrator = integrator_of(method);
+    if (const std::string missing = not_written(method); !missing.empty()) {
+      out.how = "not measured: " + missing;
+      limits.push_back(out);
+      continue;
+    }
     const bool by_eigenvalues = integrator == "explicit-euler" || integrator == "rk4";
     if (by_eigenvalues && !spectrum) {
       out.source = "not computed in --quick (a 1520×1520 nonsymmetric eigen-solve)";
@@ -326,6 +331,11 @@ std::vector<StepLimit> critical_steps(const Scenario& s, const StudyOptions& opt
     out.about = "at rest";
     const double h_c = limit.critical.step;
     if (std::isinf(h_c) || h_c <= 0.0) {
+      limits.push_back(out);
+      continue;
+    }
+    if (const std::string missing = not_written(out.method); !missing.empty()) {
+      out.how = "not measured: " + missing;
       limits.push_back(out);
       continue;
     }

@@ -77,8 +77,8 @@ DampedScene damped_scene(const StudyOptions& options) {
 
 void write_damped_section(std::ostream& out, const DampedScene& d, const std::string& figures) {
   out << "\n## Task 4's damped scene: where the lab's Verlet pays\n\n"
-      << "Scene `task4-damped` (`./lab view task4-damped`): the 3×3 grid of task 4 with dampers "
-         "7.5 times the lab's (b/k = 0.0375 s for both families) at h = "
+      << "Scene `task4-damped` (`./lab view task4-damped`): the 3×3 grid of task 4 with every "
+         "damper four times the lab's (b = 0.4 and 0.2 N·s/m) at h = "
       << number(d.h) << " s. Its fastest mode has ω_max = " << number(d.omega_max, 4)
       << " rad/s and damping ratio ζ = " << number(d.zeta, 3)
       << ". Textbook Verlet (the dampers see the backward difference (r_n − r_{n−1})/h) has "

@@ -35,12 +35,14 @@ std::string work_precision(const Results& r, const Scenario& s, const fs::path& 
   int index = 0;
   for (const std::string& method : all_methods(r.options)) {
     out << "# " << method << "\n";
+    bool any = false;
     for (const Run& run : r.runs)
       if (run.scene == s.name && run.method == method && run.stable)
-        out << run.wall << ' ' << run.max_error << '\n';
+        out << run.wall << ' ' << run.max_error << '\n', any = true;
     out << "\n\n";
-    plot += std::string(index ? "," : "") + " '" + data.string() + "' index " +
-            std::to_string(index) + " with linespoints title '" + shown(method) + "'";
+    if (any)  // a method with no stable run (the student's, not written yet) has no curve
+      plot += std::string(plot == "plot" ? "" : ",") + " '" + data.string() + "' index " +
+              std::to_string(index) + " with linespoints title '" + shown(method) + "'";
     ++index;
   }
   return header(svg, s.title + ": work against precision", "inside left bottom") +
@@ -62,9 +64,11 @@ std::string error_vs_step(const Results& r, const Scenario& s, const fs::path& d
     out << "# " << o.method << "\n";
     double sx = 0, sy = 0;
     int n = 0;
+    bool any = false;
     for (const Run& run : r.runs) {
       if (run.scene != s.name || run.method != o.method || !run.stable) continue;
       out << run.h << ' ' << run.max_error << '\n';
+      any = true;
       if (run.h >= o.h_from && run.h <= o.h_to)
         sx += std::log(run.h), sy += std::log(run.max_error), ++n;
     }
@@ -76,11 +80,16 @@ std::string error_vs_step(const Results& r, const Scenario& s, const fs::path& d
     }
     out << "\n\n";
     const std::string c = " lc " + std::to_string(colour++);
-    plot += std::string(index ? "," : "") + " '" + data.string() + "' index " +
+    if (!any) {  // nothing stable to draw
+      index += 2;
+      continue;
+    }
+    plot += std::string(plot == "plot" ? "" : ",") + " '" + data.string() + "' index " +
             std::to_string(index) + " with linespoints" + c + " title '" + shown(o.method) +
-            " (slope " + number(o.measured, 3) + ", theory " + std::to_string(o.theory) + ")', '" +
-            data.string() + "' index " + std::to_string(index + 1) + " with lines dt 2 lw 3" + c +
-            " notitle";
+            " (slope " + number(o.measured, 3) + ", theory " + std::to_string(o.theory) + ")'";
+    if (n > 0 && !std::isnan(o.measured))  // the fitted line, where there is one
+      plot += ", '" + data.string() + "' index " + std::to_string(index + 1) +
+              " with lines dt 2 lw 3" + c + " notitle";
     index += 2;
   }
   return header(svg, s.title + ": error against step", "inside right bottom") +

@@ -174,8 +174,13 @@ std::vector<std::string> student_findings(const Results& r) {
       }
       if (o && !std::isnan(o->measured) && std::abs(o->measured - o->theory) > 0.15)
         findings.push_back(who + ": measured order **" + number(o->measured, 3) + "**, theory " +
-                           std::to_string(o->theory) +
-                           " (the tests allow ±0.15). Checked: " + order_words(integrator) + ".");
+                           std::to_string(o->theory) + " (the tests allow ±0.15" +
+                           (o->outside_range
+                                ? "; fitted over its smallest steps, h = " + number(o->h_from) +
+                                      " … " + number(o->h_to) +
+                                      " s, whose errors stayed above a tenth of the motion"
+                                : "") +
+                           "). Checked: " + order_words(integrator) + ".");
       if (o && std::isnan(o->measured) && s.name == "two-masses")
         findings.push_back(who +
                            ": no order could be measured: fewer than three of its runs had an "

@@ -137,6 +137,7 @@ struct Order {
   double measured = 0.0;            ///< NaN when too few points lie in the asymptotic range
   double h_from = 0.0, h_to = 0.0;  ///< s, the fitted range
   int points = 0;
+  bool outside_range = false;  ///< fitted over the smallest steps, their errors out of the range
 };
 
 std::vector<Order> measured_orders(const Scenario& s, const std::vector<Run>& runs,

@@ -39,7 +39,7 @@ void validate(const Scene& scene);
 /// compiled into the kit. Throws InvalidParameter for any other number.
 SceneParameters task_scene(int task);
 
-/// "task1" … "task5", then "task4-damped" (task 4's grid with strong dampers at h = 0.085 s,
+/// "task1" … "task5", then "task4-damped" (task 4's grid, dampers 4 × the lab's, h = 0.085 s,
 /// where textbook Verlet diverges and the lab's does not: handout section 4).
 std::vector<std::string> task_scene_names();
 
