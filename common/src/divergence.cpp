@@ -691,10 +691,19 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       d.equation = "(2.3)";
       words << "Why: the total energy rose from " << number(start_energy) << " J to "
             << number(end_energy) << " J by t = " << energy_time << " s (twice its reference "
-            << number(reference) << " J at t = " << energy_doubled << " s), although " << step_words
-            << ": springs and dampers cannot give energy at such a step, so some spring or damper "
-               "force points the wrong way. Check the signs in (1.1) and (1.2) and how (2.3) adds "
-               "them.";
+            << number(reference) << " J at t = " << energy_doubled << " s), although "
+            << step_words;
+      if (impl.student_task == 4 && p.integrator == "verlet")
+        // Only the step is the student's: the springs and dampers are the reference's.
+        words << ": the springs and dampers are not your task 4's code and cannot give energy "
+                 "at such a step, so your step gained it. Look at verlet_step, handout section 4: "
+                 "with the backward difference (r_n - r_{n-1})/h in the dampers instead of (4.2) "
+                 "(textbook Verlet) the limit drops to 2(sqrt(1 + zeta^2) - zeta)/omega per mode, "
+                 "below 2/omega_max.";
+      else
+        words << ": springs and dampers cannot give energy at such a step, so some spring or "
+                 "damper force points the wrong way. Check the signs in (1.1) and (1.2) and how "
+                 "(2.3) adds them.";
     } else {
       d.law = BrokenLaw::step_function;
       d.time = start_time;
