@@ -29,24 +29,32 @@
 // goes colour by colour, each colour's springs in list order. Within a colour the projections are
 // independent: the processor overlaps them (a pass in plain list order waits on each spring's
 // square root and divisions before the next, which shares a particle with it, can start), and on
-// large scenes (colours of over 131072 springs) they are split over threads (parallel.hpp) with the
-// same result. A pass's
-// denominators depend only on s, k, b and the ends' masses: computed once, not per projection.
+// large scenes (colours of 131072 springs or more) they are split over threads (parallel.hpp) with
+// the same result. A projection's denominators depend only on s, k, b and the ends' masses: they
+// are computed once for each kind of spring, not per projection.
 #include "integrators.hpp"
 #include "springlab/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <vector>
 
 namespace springlab::detail {
 namespace {
 
-// One spring as a pass reads it: its ends, rest length and the substep's coefficients.
+// One spring as a pass reads it: its ends and its kind, whose coefficients it shares with every
+// spring of the same k, b, ℓ0 and end masses (a fabric has a few kinds: three families, free or
+// pinned ends). A pass reads 12 bytes a spring.
 struct Constraint {
   int p = 0, q = 0;
+  int kind = 0;
+};
+
+struct Kind {
   double rest = 0.0;    // ℓ0, m
   double ks2 = 0.0;     // k s²
   double bs = 0.0;      // b s
@@ -75,18 +83,20 @@ class Xpbd final : public Integrator {
       }
       start_ = r;
       r += s * v;
-      std::fill(lambda_.begin(), lambda_.end(), 0.0);
-      std::fill(mu_.begin(), mu_.end(), 0.0);
+      if (iterations > 1) {
+        std::fill(lambda_.begin(), lambda_.end(), 0.0);
+        std::fill(mu_.begin(), mu_.end(), 0.0);
+      }
       for (int pass = 0; pass < iterations; ++pass)
-        project(r);
+        project(r, iterations > 1);
       work_.projections += long(springs) * iterations;
       v = (r - start_) / s;
     }
   }
 
  private:
-  // The colours and the constraints in pass order, again whenever the springs, the masses, the
-  // pins or the substep change.
+  // The colours, the kinds and the constraints in pass order, again whenever the springs, the
+  // masses, the pins or the substep change.
   void prepare(const Model& model, long n, double s) {
     const std::vector<Spring>& springs = model.springs;
     Eigen::VectorXd w(n);
@@ -98,8 +108,11 @@ class Xpbd final : public Integrator {
     springs_ = &springs;
     s_ = s;
     inverse_mass_ = std::move(w);
-    lambda_.assign(springs.size(), 0.0);
-    mu_.assign(springs.size(), 0.0);
+    // λ and μ only matter from a second pass on: with one pass they start at 0 and are not read
+    // again, so they are not kept.
+    const std::size_t kept = parameters_.iterations > 1 ? springs.size() : 0;
+    lambda_.assign(kept, 0.0);
+    mu_.assign(kept, 0.0);
     // Greedy colouring: a bit per colour used at each particle. A spring with every one of the
     // 64 colours taken at its ends (a particle with more than 63 springs) goes into a last group
     // that a pass visits in list order on one thread.
@@ -119,53 +132,69 @@ class Xpbd final : public Integrator {
       ++group_start_[std::size_t(c) + 1];
     for (std::size_t c = 1; c < group_start_.size(); ++c)
       group_start_[c] += group_start_[c - 1];
+    last_group_sequential_ = colours == 65;
     std::vector<long> next(group_start_.begin(), group_start_.end() - 1);
     constraints_.resize(springs.size());
+    kinds_.clear();
+    std::map<std::array<double, 4>, int> kind_of;  // (k, b, ℓ0, w_p + w_q) → kind
     const double s2 = s * s;
     for (std::size_t i = 0; i < springs.size(); ++i) {
       const Spring& spring = springs[i];
       const double sum = inverse_mass_[spring.p] + inverse_mass_[spring.q];
+      const auto [where, added] =
+          kind_of.try_emplace({spring.k, spring.b, spring.rest_length, sum}, int(kinds_.size()));
+      if (added) {
+        Kind kind;
+        kind.rest = spring.rest_length;
+        kind.ks2 = spring.k * s2;
+        kind.bs = spring.b * s;
+        kind.along = 1.0 / ((kind.ks2 + kind.bs) * sum + 1.0);
+        kind.across = 1.0 / (kind.bs * sum + 1.0);
+        kinds_.push_back(kind);
+      }
       Constraint& c = constraints_[std::size_t(next[std::size_t(colour[i])]++)];
       c.p = spring.p;
       c.q = spring.q;
-      c.rest = spring.rest_length;
-      c.ks2 = spring.k * s2;
-      c.bs = spring.b * s;
-      c.along = 1.0 / ((c.ks2 + c.bs) * sum + 1.0);
-      c.across = 1.0 / (c.bs * sum + 1.0);
+      c.kind = where->second;
     }
-    last_group_sequential_ = colours == 65;
   }
 
   // One Gauss–Seidel pass, colour by colour (the file's comment, step 2).
-  void project(Vectors& r) {
+  void project(Vectors& r, bool accumulate) {
     const std::size_t groups = group_start_.size() - 1;
+    const auto range = [&](long begin, long end) {
+      if (accumulate)
+        project_range<true>(r, begin, end);
+      else
+        project_range<false>(r, begin, end);
+    };
     for (std::size_t g = 0; g < groups; ++g) {
       const long begin = group_start_[g], end = group_start_[g + 1];
-      if (g + 1 == groups && last_group_sequential_) {
-        project_range(r, begin, end);
-        continue;
-      }
       // Threads only for colours of many springs (grids from about 500×500): each colour is a
       // parallel region of its own, and smaller ones spent more time starting and waiting for
       // threads than projecting (two threads ran a 200×200 fabric 5 times slower than one on a
       // busy machine).
-      if (end - begin >= 8 * parallel_items)
-        for_blocks(end - begin, [&](long b, long e) { project_range(r, begin + b, begin + e); });
+      const bool independent = !(g + 1 == groups && last_group_sequential_);
+      if (independent && end - begin >= 8 * parallel_items)
+        for_blocks(end - begin, [&](long b, long e) { range(begin + b, begin + e); });
       else
-        project_range(r, begin, end);
+        range(begin, end);
     }
   }
 
+  // Projections [begin, end) of the pass order; `accumulate`: λ and μ are kept (several passes).
+  template <bool accumulate>
   void project_range(Vectors& r, long begin, long end) {
     double* x = r.data();
     const double* x0 = start_.data();
     const double* w = inverse_mass_.data();
+    const Kind* kinds = kinds_.data();
     double* lambda = lambda_.data();
     double* mu = mu_.data();
     for (long i = begin; i < end; ++i) {
-      const Constraint& c = constraints_[std::size_t(i)];
-      const long p = 2L * c.p, q = 2L * c.q;
+      const Constraint& constraint = constraints_[std::size_t(i)];
+      const Kind& c = kinds[constraint.kind];
+      const long p = 2L * constraint.p, q = 2L * constraint.q;
       const double dx = x[p] - x[q], dy = x[p + 1] - x[q + 1];
       const double length_squared = dx * dx + dy * dy;
       if (length_squared == 0.0) continue;  // no direction: no force, as (1.1) says
@@ -174,14 +203,13 @@ class Xpbd final : public Integrator {
       // Δ_p − Δ_q, the ends' relative move in this substep so far.
       const double mx = (x[p] - x0[p]) - (x[q] - x0[q]);
       const double my = (x[p + 1] - x0[p + 1]) - (x[q + 1] - x0[q + 1]);
-      const auto k = std::size_t(i);  // λ and μ are kept in pass order, as the constraints
+      const double lambda_i = accumulate ? lambda[i] : 0.0, mu_i = accumulate ? mu[i] : 0.0;
       const double along =
-          (-c.ks2 * (length - c.rest) - lambda[k] - c.bs * (nx * mx + ny * my)) * c.along;
-      lambda[k] += along;
-      const double across = (-mu[k] - c.bs * (nx * my - ny * mx)) * c.across;
-      mu[k] += across;
+          (-c.ks2 * (length - c.rest) - lambda_i - c.bs * (nx * mx + ny * my)) * c.along;
+      const double across = (-mu_i - c.bs * (nx * my - ny * mx)) * c.across;
+      if (accumulate) lambda[i] += along, mu[i] += across;
       const double cx = along * nx - across * ny, cy = along * ny + across * nx;
-      const double wp = w[c.p], wq = w[c.q];
+      const double wp = w[constraint.p], wq = w[constraint.q];
       x[p] += wp * cx;
       x[p + 1] += wp * cy;
       x[q] -= wq * cx;
@@ -195,6 +223,7 @@ class Xpbd final : public Integrator {
   double s_ = 0.0;                                // the substep it prepared for, s
   Eigen::VectorXd inverse_mass_;                  // w_i = 1/m_i, 0 for pinned particles
   std::vector<Constraint> constraints_;           // in pass order: colour by colour
+  std::vector<Kind> kinds_;                       // their coefficients
   std::vector<long> group_start_;                 // colour c is [start[c], start[c + 1])
   bool last_group_sequential_ = false;            // the last group is not a colour (see prepare)
   std::vector<double> lambda_;  // λ of each constraint in this substep, kg·m, in pass order
