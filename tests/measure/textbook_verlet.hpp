@@ -12,12 +12,13 @@
 namespace springlab {
 
 /// One textbook Verlet step: r_{n+1} = 2 r_n − r_{n−1} + h² a(r_n, v_n), then
-/// v_{n+1} = (r_{n+1} − r_n)/h. The first step makes r_{−1} as task 4's does, by (4.3).
+/// v_{n+1} = (r_{n+1} − r_n)/h. It starts from r_{−1} = r_0 − h v_0, the position whose
+/// backward difference is v_0: from its first step on, its positions are symplectic Euler's.
 inline void textbook_verlet_step(const AccelerationFunction& acceleration, double h, Vectors& r,
                                  Vectors& v, VerletHistory& history) {
-  if (!history.has_previous) {
-    history.previous_position = r - h * v + 0.5 * h * h * acceleration(r, v);
+  if (!history.has_previous) {  // the start the backward difference itself implies
     history.has_previous = true;
+    history.previous_position = r - h * v;
   }
   Vectors next = 2.0 * r - history.previous_position + h * h * acceleration(r, v);
   v = (next - r) / h;
