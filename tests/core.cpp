@@ -83,7 +83,7 @@ TEST_CASE("Parameters: an unknown key suggests the nearest known one", "[core][p
                validate(p);
              }),
              Contains("one of explicit-euler, symplectic-euler, verlet, velocity-verlet, rk4, "
-                      "implicit-euler"));
+                      "implicit-euler, xpbd"));
 }
 
 TEST_CASE("Parameters: --set changes every kind of field", "[core][parameters]") {

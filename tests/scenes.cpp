@@ -50,12 +50,12 @@ TEST_CASE("Particle sets: bad text names the field, the text and the forms allow
 
 TEST_CASE("Built-in scenes: each task's scene is the TOML file the kit ships", "[core][scene]") {
   REQUIRE(task_scene_names() ==
-          std::vector<std::string>{"task1", "task2", "task3", "task4", "task5"});
+          std::vector<std::string>{"task1", "task2", "task3", "task4", "task5", "task4-damped"});
   for (const BuiltinScene& builtin : builtin_scenes()) {
     CAPTURE(builtin.path);
     const SceneParameters p = load_scene(std::string(builtin.name));
     CHECK(p.name == builtin.name);
-    CHECK(p.task == int(builtin.name.back() - '0'));
+    CHECK(p.task == int(builtin.name[4] - '0'));
     CHECK_NOTHROW(validate(p));
     // The same file read from the source tree gives the same scene.
     const std::filesystem::path file = std::filesystem::path(SPRINGLAB_SOURCE_DIR) / builtin.path;

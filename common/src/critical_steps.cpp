@@ -188,7 +188,8 @@ double critical_step_by_bisection(const LinearModel& model, std::string_view int
   return lo;
 }
 
-CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator) {
+CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator,
+                              int xpbd_substeps) {
   if (!is_integrator_name(integrator))
     throw InvalidParameter("integrator", "\"" + std::string(integrator) + "\"",
                            integrator_choices());
@@ -209,6 +210,13 @@ CriticalStep critical_step_of(const LinearModel& model, std::string_view integra
     if (free_particles(model) <= bisection_particles_max)
       return {critical_step_by_bisection(model, integrator), LimitSource::bisection};
     return {std::min(springs, drag_limit(model)), LimitSource::modal_estimate};
+  }
+  if (integrator == "xpbd") {
+    // Backward Euler on the springs and dampers when converged: no limit from them. The
+    // external forces are explicit; of them only the drag acts like a damper, limiting each
+    // substep h/substeps to 2m/c (|1 − (h/substeps) c/m| ≤ 1 for a motion it alone damps).
+    if (!has_drag(model)) return {infinity, LimitSource::no_limit};
+    return {std::max(1, xpbd_substeps) * drag_limit(model), LimitSource::modal_estimate};
   }
   if (integrator == "symplectic-euler") {
     if (free_particles(model) <= bisection_particles_max)
@@ -248,7 +256,7 @@ double polynomial_growth_factor(const std::vector<std::complex<double>>& lambda,
 }
 
 CriticalStep estimated_critical_step(std::string_view integrator, double frequency_bound,
-                                     double damping_bound, double drag_rate) {
+                                     double damping_bound, double drag_rate, int xpbd_substeps) {
   const double w = frequency_bound, c = damping_bound;
   const auto estimate = [](double h) { return CriticalStep{h, LimitSource::modal_estimate}; };
   // 2m/c of the drag, explicit in every method (|1 - h c/m| <= 1 for a motion it alone damps).
@@ -266,6 +274,9 @@ CriticalStep estimated_critical_step(std::string_view integrator, double frequen
   if (integrator == "rk4") return estimate(std::min(2.0 * std::sqrt(2.0) / w, rk4_reach(-1.0) / c));
   if (integrator == "implicit-euler")
     return std::isinf(drag) ? CriticalStep{infinity, LimitSource::no_limit} : estimate(drag);
+  if (integrator == "xpbd")
+    return std::isinf(drag) ? CriticalStep{infinity, LimitSource::no_limit}
+                            : estimate(std::max(1, xpbd_substeps) * drag);
   return {};  // explicit-euler: its limit hangs on each mode's damping ratio
 }
 
@@ -286,14 +297,15 @@ StabilityReport stability_report(const SceneParameters& p, const Implementation&
     const LinearModel model = linearise(scene);
     report.frequency = highest_frequency(model);
     for (const std::string& name : integrator_names())
-      report.limits.push_back({name, critical_step_of(model, name)});
+      report.limits.push_back({name, critical_step_of(model, name, p.xpbd.substeps)});
     return report;
   }
   // Too large for eigen-solves: lower estimates from the bounds.
   const double drag = p.wind.enabled ? p.wind.drag / particles.mass.minCoeff() : 0.0;
   const double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned) + drag;
   for (const std::string& name : integrator_names())
-    report.limits.push_back({name, estimated_critical_step(name, report.frequency_bound, c, drag)});
+    report.limits.push_back(
+        {name, estimated_critical_step(name, report.frequency_bound, c, drag, p.xpbd.substeps)});
   return report;
 }
 

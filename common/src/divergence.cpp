@@ -56,6 +56,7 @@ std::string method_name(std::string_view integrator) {
   if (integrator == "velocity-verlet") return "velocity Verlet";
   if (integrator == "rk4") return "RK4";
   if (integrator == "implicit-euler") return "implicit Euler";
+  if (integrator == "xpbd") return "XPBD";
   return std::string(integrator);
 }
 
@@ -396,15 +397,16 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
         *growth = polynomial_growth_factor(lambda, p.integrator, p.step);
       return {critical, LimitSource::exact_formula};
     }
-    const CriticalStep critical = critical_step_of(model, p.integrator);
-    if (growth && p.step > critical.step && p.integrator != "implicit-euler")
+    const CriticalStep critical = critical_step_of(model, p.integrator, p.xpbd.substeps);
+    if (growth && p.step > critical.step && p.integrator != "implicit-euler" &&
+        p.integrator != "xpbd")
       *growth = step_growth_factor(model, p.integrator, p.step);
     return critical;
   }
   const double w = highest_frequency_bound(scene.springs, rest, particles.mass, particles.pinned);
   double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
   const double drag_rate = p.wind.enabled ? p.wind.drag / particles.mass.minCoeff() : 0.0;
-  return estimated_critical_step(p.integrator, w, c + drag_rate, drag_rate);
+  return estimated_critical_step(p.integrator, w, c + drag_rate, drag_rate, p.xpbd.substeps);
 }
 
 void set_diagnosis_reference(const Implementation* reference) {
@@ -793,7 +795,10 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
         words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
                  "from the values at the start of the step.";
       else if (forces_right && impl.student_task == 4 && p.integrator == "verlet")
-        words << "Look at the step itself: verlet_step, handout section 4.";
+        // Only the step is the student's here: the springs and dampers are the reference's.
+        words << "Look at the step itself: verlet_step, handout section 4. With the backward "
+                 "difference (r_n - r_{n-1})/h in the dampers instead of (4.2) (textbook Verlet) "
+                 "the limit drops to 2(sqrt(1 + zeta^2) - zeta)/omega per mode, below 2/omega_max.";
       else if (!forces_right)
         words << "Check (1.1), (1.2) and how (2.3) adds them.";
     } else if (!std::isnan(energy_doubled) && !forces_right && signs.exact) {
@@ -812,7 +817,10 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
         words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
                  "from the values at the start of the step.";
       else if (impl.student_task == 4 && p.integrator == "verlet")
-        words << "Look at the step itself: verlet_step, handout section 4.";
+        // Only the step is the student's here: the springs and dampers are the reference's.
+        words << "Look at the step itself: verlet_step, handout section 4. With the backward "
+                 "difference (r_n - r_{n-1})/h in the dampers instead of (4.2) (textbook Verlet) "
+                 "the limit drops to 2(sqrt(1 + zeta^2) - zeta)/omega per mode, below 2/omega_max.";
       else
         words << "But " << large_motion << ": a smaller h helps.";
     }

@@ -45,8 +45,13 @@ class Verlet final : public Integrator {
 }  // namespace
 
 std::vector<std::string> integrator_names() {
-  return {"explicit-euler", "symplectic-euler", "verlet", "velocity-verlet", "rk4",
-          "implicit-euler"};
+  return {"explicit-euler",
+          "symplectic-euler",
+          "verlet",
+          "velocity-verlet",
+          "rk4",
+          "implicit-euler",
+          "xpbd"};
 }
 
 bool is_integrator_name(std::string_view name) {
@@ -61,13 +66,15 @@ std::string integrator_choices() {
   return text;
 }
 
-std::unique_ptr<Integrator> make_integrator(std::string_view name, const Implementation& impl) {
+std::unique_ptr<Integrator> make_integrator(std::string_view name, const Implementation& impl,
+                                            const XpbdParameters& xpbd) {
   if (name == "explicit-euler") return std::make_unique<ExplicitEuler>(impl);
   if (name == "symplectic-euler") return detail::make_symplectic_euler();
   if (name == "verlet") return std::make_unique<Verlet>(impl);
   if (name == "velocity-verlet") return detail::make_velocity_verlet();
   if (name == "rk4") return detail::make_rk4();
   if (name == "implicit-euler") return detail::make_implicit_euler();
+  if (name == "xpbd") return detail::make_xpbd(xpbd);
   throw InvalidParameter("integrator", "\"" + std::string(name) + "\"", integrator_choices());
 }
 

@@ -12,5 +12,6 @@ std::unique_ptr<Integrator> make_symplectic_euler();
 std::unique_ptr<Integrator> make_velocity_verlet();
 std::unique_ptr<Integrator> make_rk4();
 std::unique_ptr<Integrator> make_implicit_euler();
+std::unique_ptr<Integrator> make_xpbd(const XpbdParameters& parameters);
 
 }  // namespace springlab::detail

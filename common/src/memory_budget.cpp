@@ -45,7 +45,8 @@ double integrator_bytes_per_particle(const std::string& integrator) {
   if (integrator == "symplectic-euler") return 16;
   if (integrator == "verlet") return 128;
   if (integrator == "rk4") return 128;
-  return 300;  // velocity-verlet, implicit-euler
+  if (integrator == "xpbd") return 72;  // r at a substep's start, 1/m, external forces, colours
+  return 300;                           // velocity-verlet, implicit-euler
 }
 
 // A stack size as libgomp reads one: strtoul's whole number, then spaces, an optional unit (B, K,
@@ -214,6 +215,9 @@ double estimated_bytes(const SceneParameters& p) {
   double bytes =
       8 * mib + particles * (136 + integrator_bytes_per_particle(p.integrator)) + springs * 80;
   if (p.integrator == "velocity-verlet") bytes += 16 * springs;  // its dampers
+  // XPBD: each spring as a pass reads it (56 B), its λ and μ (16 B), its colour while they are
+  // made (4 B).
+  if (p.integrator == "xpbd") bytes += 76 * springs;
   // Implicit Euler's blocks S with their ends (32 B), a vector per spring for its gathers on two
   // threads (16 B), and each spring twice in the particles' lists (8 B).
   if (p.integrator == "implicit-euler") bytes += 56 * springs;

@@ -124,7 +124,7 @@ SceneParameters load_scene(const std::string& name_or_path) {
     if (name_or_path == scene.name) return parse_scene(scene.text, std::string(scene.path));
   if (name_or_path.rfind("task", 0) == 0 && name_or_path.find('.') == std::string::npos)
     throw InvalidParameter("scene", "\"" + name_or_path + "\"",
-                           "task1 ... task5 or the path of a readable scene file");
+                           "task1 ... task5, task4-damped or the path of a readable scene file");
   return load_scene_file(name_or_path);
 }
 

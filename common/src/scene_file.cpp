@@ -209,7 +209,7 @@ SceneParameters load_scene_file(const std::string& path) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error))
     throw InvalidParameter("scene", quoted_for_terminal(path),
-                           "task1 ... task5 or the path of a readable scene file");
+                           "task1 ... task5, task4-damped or the path of a readable scene file");
   // A scene is a few hundred bytes: a huge file is a mistake, and reading it whole could exhaust
   // the memory before a word is said.
   const auto size = std::filesystem::file_size(path, error);

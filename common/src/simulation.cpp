@@ -48,9 +48,12 @@ Simulation::Simulation(const SceneParameters& p, const Implementation& impl,
 Simulation::Simulation(Scene scene, const Implementation& impl, DivergenceLimits limits)
     : scene_(std::move(scene)),
       impl_(&impl),
-      integrator_(make_integrator(scene_.parameters.integrator, impl)),
+      integrator_(make_integrator(scene_.parameters.integrator, impl, scene_.parameters.xpbd)),
       acceleration_function_([this](const Vectors& r, const Vectors& v) -> const Vectors& {
         return acceleration(r, v);
+      }),
+      external_function_([this](const Vectors& r, const Vectors& v) -> const Vectors& {
+        return external_acceleration(r, v);
       }),
       limits_(limits) {
   validate(scene_);
@@ -132,6 +135,27 @@ const Vectors& Simulation::acceleration(const Vectors& r, const Vectors& v) {
   return acceleration_;
 }
 
+const Vectors& Simulation::external_acceleration(const Vectors& r, const Vectors& v) {
+  ++external_evaluations_;
+  const SceneParameters& p = scene_.parameters;
+  const Particles& particles = scene_.particles;
+  external_force_.setZero(2, r.cols());
+  if (p.gravity.enabled)
+    impl_->add_gravity(particles.mass, p.gravity.acceleration, external_force_);
+  if (wind_ && fast_forces()) {
+    grid_->add_wind(*wind_, time(), r, v, external_force_);
+  } else if (wind_) {
+    wind_->begin_pass();
+    impl_->add_wind(*wind_, time(), r, v, external_force_);
+  }
+  if (time() < p.push_duration)
+    for (int i : pushed_)
+      external_force_.col(i) += p.push;
+  external_.noalias() = external_force_ * inverse_mass_.asDiagonal();
+  if (!pinned_list_.empty()) impl_->hold_pinned(particles.pinned, external_);
+  return external_;
+}
+
 Diagnostics Simulation::diagnostics() const {
   const SceneParameters& p = scene_.parameters;
   const Vec2 g = p.gravity.enabled ? p.gravity.acceleration : Vec2::Zero();
@@ -144,7 +168,8 @@ Diagnostics Simulation::diagnostics() const {
 void Simulation::step() {
   Particles& particles = scene_.particles;
   try {
-    const Model model{acceleration_function_, scene_.springs, particles.mass, particles.pinned};
+    const Model model{acceleration_function_, scene_.springs, particles.mass, particles.pinned,
+                      &external_function_};
     integrator_->step(model, scene_.parameters.step, particles.position, particles.velocity);
     ++steps_;
     ++stretch_steps_;

@@ -15,6 +15,11 @@
 //   step/METHOD/N          one step of each of the six integrators on the model without wind:
 //                          steps_per_s, evaluations_per_step, and cost_in_evaluations, the step's
 //                          time over the time of one force evaluation, measured in alternation
+//   step/xpbd/N            one XPBD step (10 substeps of one iteration, the defaults): steps_per_s,
+//                          ns_per_projection (a step's time over its constraint projections: one
+//                          spring, one pass, the external forces' share included), over_limit (a
+//                          step's time over as many limit-kernel calls as it makes passes over
+//                          the springs), cost_in_evaluations as above
 //   rk4-vs-odeint/N        the kit's rk4 and Boost.Odeint's runge_kutta4 stepping the same model
 //                          in alternation: kit_over_odeint < 1 means the kit's step is faster
 //
@@ -157,7 +162,8 @@ class Fabric {
   // The model as an integrator sees it (Simulation::step passes the same).
   const AccelerationFunction& acceleration() const { return acceleration_; }
   Model model() const {
-    return Model{acceleration_, scene().springs, scene().particles.mass, scene().particles.pinned};
+    return Model{acceleration_, scene().springs, scene().particles.mass, scene().particles.pinned,
+                 &external_};
   }
 
  private:
@@ -180,6 +186,9 @@ class Fabric {
                                               const Vectors& v) -> const Vectors& {
       return sim->acceleration(r, v);
     };
+    external_ = [sim = simulation_.get()](const Vectors& r, const Vectors& v) -> const Vectors& {
+      return sim->external_acceleration(r, v);
+    };
   }
 
   int n_;
@@ -187,7 +196,7 @@ class Fabric {
   std::unique_ptr<Simulation> simulation_;
   std::optional<GridForces> grid_;
   std::unique_ptr<LimitKernel> limit_;
-  AccelerationFunction acceleration_;
+  AccelerationFunction acceleration_, external_;
 };
 
 // Steps or evaluations per timed batch: about 20000 particles' worth, so that reading a clock
@@ -385,6 +394,58 @@ void step(benchmark::State& state, int n, const std::string& method) {
   state.counters["evaluation_us"] = 1e6 * evaluation_seconds / double(steps);
 }
 
+// XPBD (xpbd.cpp) works in passes over the springs, not force evaluations: each iteration is a
+// batch of steps, then as many limit-kernel calls as those steps made passes (substeps ×
+// iterations each), then as many force evaluations as steps, each batch timed.
+void xpbd_step(benchmark::State& state, int n) {
+  Fabric& fabric = Fabric::get(n, false);
+  Simulation& simulation = fabric.simulation();
+  const Model model = fabric.model();
+  const Particles& start = fabric.scene().particles;
+  const SceneParameters& p = fabric.scene().parameters;
+  const std::unique_ptr<Integrator> integrator = make_integrator("xpbd", implementation(), p.xpbd);
+  const long passes = long(p.xpbd.substeps) * p.xpbd.iterations;
+  Vectors r = start.position, v = start.velocity, limit_out;
+  integrator->step(model, p.step, r, v);  // its storage, once
+  const long batch = batch_size(n);
+  long steps = 0;
+  const long projections_before = integrator->solver_work().projections;
+  Batches step_batches, limit_batches;
+  double evaluation_seconds = 0.0;
+  for (auto _ : state) {
+    const double t0 = thread_seconds();
+    for (long i = 0; i < batch; ++i)
+      integrator->step(model, p.step, r, v);
+    const double t1 = thread_seconds();
+    for (long i = 0; i < batch * passes; ++i) {
+      fabric.limit().run(r, limit_out);
+      benchmark::DoNotOptimize(limit_out.data());
+    }
+    const double t2 = thread_seconds();
+    for (long i = 0; i < batch; ++i)
+      benchmark::DoNotOptimize(simulation.acceleration(r, v).data());
+    const double t3 = thread_seconds();
+    step_batches.add(t1 - t0);
+    limit_batches.add(t2 - t1);
+    evaluation_seconds += t3 - t2;
+    steps += batch;
+    if (steps % 1000 < batch) {  // back to the start state now and then
+      r = start.position;
+      v = start.velocity;
+      integrator->restart();
+    }
+  }
+  const double projections =
+      double(integrator->solver_work().projections - projections_before);  // timed steps only
+  state.counters["steps_per_s"] = double(steps) / step_batches.total;
+  state.counters["ns_per_projection"] = 1e9 * step_batches.total / projections;
+  state.counters["over_limit"] = step_batches.least / limit_batches.least;
+  state.counters["over_limit_all"] = step_batches.total / limit_batches.total;
+  state.counters["cost_in_evaluations"] = step_batches.total / evaluation_seconds;
+  state.counters["passes_per_step"] = double(passes);
+  state.counters["batch_size"] = double(batch);
+}
+
 // Each iteration is a batch of kit steps, then as many Odeint steps, each batch timed.
 void rk4_vs_odeint(benchmark::State& state, int n) {
   Fabric& fabric = Fabric::get(n, false);
@@ -456,6 +517,10 @@ void register_all() {
       // The implicit step's matrix at 1000×1000 (2 million unknowns, ~100 million entries and
       // their slots) would take several GB: measured up to 300×300.
       if (method == "implicit-euler" && n > 300) continue;
+      if (method == "xpbd") {
+        add("step/xpbd", xpbd_step);
+        continue;
+      }
       add("step/" + method, [method](benchmark::State& s, int m) { step(s, m, method); });
     }
     add("rk4-vs-odeint", rk4_vs_odeint);

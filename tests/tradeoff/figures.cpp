@@ -14,8 +14,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> all_methods() {
-  std::vector<std::string> methods = kit_methods();
+std::vector<std::string> all_methods(const StudyOptions& options) {
+  std::vector<std::string> methods = study_methods(options);
   methods.push_back(odeint_rk4);
   methods.push_back(odeint_dopri5);
   return methods;
@@ -33,14 +33,16 @@ std::string work_precision(const Results& r, const Scenario& s, const fs::path& 
   out.precision(8);
   std::string plot = "plot";
   int index = 0;
-  for (const std::string& method : all_methods()) {
+  for (const std::string& method : all_methods(r.options)) {
     out << "# " << method << "\n";
+    bool any = false;
     for (const Run& run : r.runs)
       if (run.scene == s.name && run.method == method && run.stable)
-        out << run.wall << ' ' << run.max_error << '\n';
+        out << run.wall << ' ' << run.max_error << '\n', any = true;
     out << "\n\n";
-    plot += std::string(index ? "," : "") + " '" + data.string() + "' index " +
-            std::to_string(index) + " with linespoints title '" + method + "'";
+    if (any)  // a method with no stable run (the student's, not written yet) has no curve
+      plot += std::string(plot == "plot" ? "" : ",") + " '" + data.string() + "' index " +
+              std::to_string(index) + " with linespoints title '" + shown(method) + "'";
     ++index;
   }
   return header(svg, s.title + ": work against precision", "inside left bottom") +
@@ -62,9 +64,11 @@ std::string error_vs_step(const Results& r, const Scenario& s, const fs::path& d
     out << "# " << o.method << "\n";
     double sx = 0, sy = 0;
     int n = 0;
+    bool any = false;
     for (const Run& run : r.runs) {
       if (run.scene != s.name || run.method != o.method || !run.stable) continue;
       out << run.h << ' ' << run.max_error << '\n';
+      any = true;
       if (run.h >= o.h_from && run.h <= o.h_to)
         sx += std::log(run.h), sy += std::log(run.max_error), ++n;
     }
@@ -76,11 +80,16 @@ std::string error_vs_step(const Results& r, const Scenario& s, const fs::path& d
     }
     out << "\n\n";
     const std::string c = " lc " + std::to_string(colour++);
-    plot += std::string(index ? "," : "") + " '" + data.string() + "' index " +
-            std::to_string(index) + " with linespoints" + c + " title '" + o.method + " (slope " +
-            number(o.measured, 3) + ", theory " + std::to_string(o.theory) + ")', '" +
-            data.string() + "' index " + std::to_string(index + 1) + " with lines dt 2 lw 3" + c +
-            " notitle";
+    if (!any) {  // nothing stable to draw
+      index += 2;
+      continue;
+    }
+    plot += std::string(plot == "plot" ? "" : ",") + " '" + data.string() + "' index " +
+            std::to_string(index) + " with linespoints" + c + " title '" + shown(o.method) +
+            " (slope " + number(o.measured, 3) + ", theory " + std::to_string(o.theory) + ")'";
+    if (n > 0 && !std::isnan(o.measured))  // the fitted line, where there is one
+      plot += ", '" + data.string() + "' index " + std::to_string(index + 1) +
+              " with lines dt 2 lw 3" + c + " notitle";
     index += 2;
   }
   return header(svg, s.title + ": error against step", "inside right bottom") +
@@ -97,7 +106,7 @@ std::string critical(const Results& r, const Scenario& s, const fs::path& data,
   out << "method theory measured\n";
   for (const StepLimit& c : r.critical)
     if (c.scene == s.name && !std::isinf(c.theory))
-      out << c.method << ' ' << (c.theory > 0 ? number(c.theory, 8) : "NaN") << ' '
+      out << '"' << shown(c.method) << "\" " << (c.theory > 0 ? number(c.theory, 8) : "NaN") << ' '
           << (c.measured > 0 ? number(c.measured, 8) : "NaN") << '\n';
   const std::string measured = "measured (linear motion about the equilibrium)";
   const std::string theory = "theory (stability.hpp, at the equilibrium)";
@@ -119,7 +128,7 @@ std::string energy(const Results& r, const Scenario& s, const fs::path& data,
   for (const Run& run : r.runs)
     if (run.scene == s.name && run.method != odeint_dopri5 && run.method != odeint_rk4 &&
         !run.energy.empty())
-      lab.push_back(&run), out << ' ' << run.method;
+      lab.push_back(&run), out << " \"" << shown(run.method) << '"';
   out << '\n';
   for (std::size_t j = 0; j < s.reference.time.size(); ++j) {
     out << s.reference.time[j] << ' ' << s.reference.energy[j];
@@ -136,7 +145,7 @@ std::string energy(const Results& r, const Scenario& s, const fs::path& data,
                      "'reference'";
   for (std::size_t i = 0; i < lab.size(); ++i)
     plot += ", '' using 1:" + std::to_string(i + 3) + " with lines lw 1.5 title '" +
-            lab[i]->method + "'";
+            shown(lab[i]->method) + "'";
   return header(svg, s.title + ": total energy at h = " + number(s.params.step) + " s",
                 "inside right top") +
          "set xlabel 't (s)'\nset ylabel 'kinetic + spring + gravity energy (J)'\n" +
@@ -164,6 +173,8 @@ bool write_figures(const Results& r, const std::string& dir, const std::string& 
       out << critical(r, s, data("critical-steps"), svg("critical-steps")) << "reset\n";
       out << energy(r, s, data("energy"), svg("energy")) << "reset\n";
     }
+    out << write_damped_figure(r.damped, dir, figures);
+    if (r.xpbd) out << write_xpbd_figures(*r.xpbd, dir, figures);
   }
   const std::string command = "gnuplot '" + script.string() + "'";
   return std::system(command.c_str()) == 0;

@@ -1,13 +1,17 @@
 // springlab-tradeoff: the speed–accuracy study of issue 5. Writes CSV files, SVG figures and the
-// handout page; with --quick, a shorter study that checks its results against theory (CI).
-// Exit codes: 0 done, 1 a --quick check failed, 2 bad input.
+// handout page; with --quick, a shorter study that checks its results against theory (CI); with
+// --impl student, a short study of the student's explicit Euler and Verlet beside the kit's
+// methods (issue 26). Exit codes: 0 done, 1 a --quick check failed, 2 bad input.
 #include "measure.hpp"
 #include "springlab/errors.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <thread>
 
 using namespace springlab;
 using namespace springlab::tradeoff;
@@ -22,6 +26,36 @@ StudyOptions quick_options() {
   o.tolerances = {1e-4, 1e-6, 1e-8};
   o.k_min_fabric = -3;
   return o;
+}
+
+// The student's study: the quick study's steps, scenes and checks, and the student's two methods
+// beside the kit's (13 s here on a loaded machine, well under the minute issue 26 allows).
+StudyOptions student_options() {
+  StudyOptions o = quick_options();
+  o.student = true;
+  o.scenes = {"two-masses", "grid", "fabric"};
+  o.tolerances = {1e-4, 1e-6};
+  return o;
+}
+
+// "AMD EPYC 7B13 (2 cores), load 1.52 0.98 0.77, 2026-11-26": where and when the study ran.
+std::string machine() {
+  std::string model = "unknown processor", line;
+  std::ifstream cpu("/proc/cpuinfo");
+  while (std::getline(cpu, line))
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  std::string load;
+  std::ifstream loadavg("/proc/loadavg");
+  std::string one, five, fifteen;
+  if (loadavg >> one >> five >> fifteen) load = ", load " + one + " " + five + " " + fifteen;
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%d %H:%M UTC", std::gmtime(&now));
+  return "\"" + model + "\" (" + std::to_string(std::thread::hardware_concurrency()) + " cores)" +
+         load + " at the start, " + date;
 }
 
 // "--repeats = 0: allowed 1 <= repeats <= 20", the kit's style of range messages.
@@ -48,14 +82,21 @@ int main(int argc, char** argv) {
       "integrator (and Boost.Odeint's rk4 and dopri5) on the lab's scenes"};
   bool quick = false, no_figures = false;
   int repeats = 0;
-  std::string out = "build/release/tradeoff", figures, page;
+  std::string impl = "reference";
+  std::string out, figures, page;
   std::vector<std::string> scenes;
   app.add_flag(
       "--quick", quick,
       "short study (1.28 s, fewer steps and tolerances, one timing) that checks measured orders, "
       "critical steps and force-evaluation budgets against theory; exit 1 on a failure");
-  app.add_option("--out", out, "directory for the CSV files and gnuplot scripts")
+  app.add_option("--impl", impl,
+                 "reference: the kit's methods (the handout's page); student: your explicit "
+                 "Euler and Verlet beside them, in about a minute")
+      ->check(CLI::IsMember({"reference", "student"}))
       ->capture_default_str();
+  app.add_option("--out", out,
+                 "directory for the CSV files, gnuplot scripts, figures and page (default "
+                 "build/release/tradeoff, with --impl student build/dev/tradeoff-student)");
   app.add_option("--figures", figures, "directory for the SVG figures (default OUT/figures)");
   app.add_option("--page", page, "the Markdown summary page to write (default OUT/tradeoff.md)");
   app.add_option("--repeats", repeats,
@@ -70,15 +111,28 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
+  const bool student = impl == "student";
+  if (student && quick) {
+    std::cerr << "springlab-tradeoff: --quick and --impl student: choose one (--impl student is "
+                 "short already)\n";
+    return 2;
+  }
+  if (out.empty()) out = student ? "build/dev/tradeoff-student" : "build/release/tradeoff";
   if (figures.empty()) figures = (std::filesystem::path(out) / "figures").string();
   if (page.empty()) page = (std::filesystem::path(out) / "tradeoff.md").string();
 
   Results results;
-  results.options = quick ? quick_options() : StudyOptions{};
+  results.options = student ? student_options() : quick ? quick_options() : StudyOptions{};
   StudyOptions& options = results.options;
+  options.xpbd = !options.quick && !options.student;
+  results.machine = machine();
   if (repeats > 0) options.repeats = repeats;
   if (!scenes.empty()) options.scenes = scenes;
   const double started = now();
+  std::cerr << "tradeoff: "
+            << (student ? "your explicit Euler and Verlet beside the kit's methods"
+                        : "every method of the kit")
+            << " on " << options.scenes.size() << " scenes; first the references\n";
   try {
     for (const std::string& name : options.scenes) {
       results.scenarios.push_back(make_scenario(name, options));
@@ -87,7 +141,7 @@ int main(int argc, char** argv) {
     double work = 0.0;
     for (const Scenario& s : results.scenarios) {
       work += critical_work(s, options);
-      std::vector<std::string> methods = kit_methods();
+      std::vector<std::string> methods = study_methods(options);
       methods.push_back(odeint_rk4);
       for (const std::string& method : methods)
         for (int k = k_min(s, options); k <= options.k_max; ++k)
@@ -100,15 +154,18 @@ int main(int argc, char** argv) {
     for (const Scenario& s : results.scenarios) {
       std::vector<Run> runs = run_scene(s, options, progress);
       std::vector<StepLimit> limits = critical_steps(s, options, progress);
-      std::vector<Order> orders = measured_orders(s, runs);
+      std::vector<Order> orders = measured_orders(s, runs, options);
       results.runs.insert(results.runs.end(), runs.begin(), runs.end());
       results.critical.insert(results.critical.end(), limits.begin(), limits.end());
       results.orders.insert(results.orders.end(), orders.begin(), orders.end());
       if (s.name == "fabric") {
         results.implicit_fabric_cost = step_cost(s, "implicit-euler");
         results.implicit_fabric_solves = count_solver_work(s, "implicit-euler", 200);
+        if (options.xpbd) results.xpbd = xpbd_study(s, options, progress);
       }
     }
+    std::cerr << "tradeoff: task4-damped: the lab's Verlet against textbook Verlet\n";
+    results.damped = damped_scene(options);
   } catch (const InvalidParameter& e) {
     std::cerr << "springlab-tradeoff: " << e.what() << '\n';
     return 2;
@@ -123,9 +180,17 @@ int main(int argc, char** argv) {
       std::cerr << "tradeoff: gnuplot failed or is missing: no figures (./lab setup installs "
                    "gnuplot-nox)\n";
   }
-  write_page(results, page, figures);
+  write_page(results, page, figures, out);
   std::cerr << "tradeoff: page " << page << "; the study took " << seconds(results.total_seconds)
             << '\n';
+  if (options.student) {
+    const std::vector<std::string> findings = student_findings(results);
+    if (findings.empty())
+      std::cerr << "tradeoff: your explicit Euler and Verlet match theory and the kit's code\n";
+    for (const std::string& finding : findings)
+      std::cerr << "tradeoff: " << finding << '\n';
+    return 0;
+  }
   if (!options.quick) return 0;
   const std::vector<std::string> failures = check(results);
   for (const std::string& failure : failures)

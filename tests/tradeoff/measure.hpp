@@ -14,6 +14,14 @@ namespace springlab::tradeoff {
 /// The kit's reference implementation (solutions/): the force code every method runs on.
 const Implementation& lab_implementation();
 
+/// The code `method` runs: lab_implementation(), or for the student's methods the student's
+/// task 1 (explicit Euler) or task 4 (Verlet) with the reference for every other task.
+const Implementation& implementation_of(const std::string& method);
+
+/// For the student's methods: NotImplemented's message when their task is not written yet
+/// (one step of the task 1 scene tells), else "".
+std::string not_written(const std::string& method);
+
 /// Largest |r_i - r_ref,i| over the particles, m.
 double position_error(const Vectors& r, const Vectors& r_ref);
 

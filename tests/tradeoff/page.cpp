@@ -17,13 +17,20 @@ namespace fs = std::filesystem;
 
 const double levels[] = {1e-2, 1e-4, 1e-6};
 
+// A message of several lines (a divergence report) as one line of a table.
+std::string one_line(std::string text) {
+  for (char& c : text)
+    if (c == '\n' || c == '|') c = ' ';
+  return text;
+}
+
 std::string setting(const Run& run) {
   return run.method == odeint_dopri5 ? "tol " + number(run.tolerance) : "h = " + number(run.h);
 }
 
 std::string cell(const Run* run, bool by_evaluations) {
   if (!run) return "none reaches it | |";
-  return "`" + run->method + "` | " + setting(*run) + ", " +
+  return "`" + shown(run->method) + "` | " + setting(*run) + ", " +
          (by_evaluations ? number(double(run->evaluations)) + " evaluations" : seconds(run->wall));
 }
 
@@ -48,6 +55,8 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
     out << "![" << s.name << " " << figure << "](" << figures << "/" << s.name << "-" << figure
         << ".svg)\n";
   out << "\n### The cheapest method for an error\n\n"
+      << "(`xpbd` makes no force evaluations, so it is left out of the last column; its work, "
+         "passes over the springs, is in its wall time.)\n\n"
       << "| largest error ≤ | fastest (wall time) | | fewest force evaluations | |\n"
       << "|---|---|---|---|---|\n";
   for (const double level : levels)
@@ -57,7 +66,7 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
       << "|---|---|---|---|\n";
   for (const Order& o : r.orders)
     if (o.scene == s.name)
-      out << "| `" << o.method << "` | " << o.theory << " | "
+      out << "| `" << shown(o.method) << "` | " << o.theory << " | "
           << (std::isnan(o.measured) ? "not reachable" : number(o.measured, 3)) << " | "
           << (std::isnan(o.measured) ? ""
                                      : number(o.h_from) + " … " + number(o.h_to) + " (" +
@@ -67,8 +76,8 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
       << "|---|---|---|---|---|\n";
   for (const StepLimit& c : r.critical)
     if (c.scene == s.name)
-      out << "| `" << c.method << "` | " << (c.theory > 0 ? number(c.theory, 4) : "—") << " | "
-          << c.source << " | " << measured(c) << " | "
+      out << "| `" << shown(c.method) << "` | " << (c.theory > 0 ? number(c.theory, 4) : "—")
+          << " | " << c.source << " | " << measured(c) << " | "
           << (c.measured > 0 && c.theory > 0 && !std::isinf(c.theory)
                   ? number(c.measured / c.theory, 4)
                   : "")
@@ -87,18 +96,19 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
   if (first && !alike) {
     out << "\nMeasured:\n\n";
     for (const StepLimit* c : limits)
-      if (!c->how.empty()) out << "- `" << c->method << "`: " << c->how << ".\n";
+      if (!c->how.empty()) out << "- `" << shown(c->method) << "`: " << c->how << ".\n";
   }
   out << "\n### At the lab step h = " << number(s.params.step) << " s\n\n"
       << "| method | stable | largest error (m) | error at the end (m) | energy error | "
          "evaluations a step | cost a step (evaluations' time) | wall time |\n"
          "|---|---|---|---|---|---|---|---|\n";
-  std::vector<std::string> methods = kit_methods();
+  std::vector<std::string> methods = study_methods(r.options);
   methods.push_back(odeint_rk4);
   for (const std::string& method : methods)
     if (const Run* run = find(r.runs, s.name, method, s.params.step))
-      out << "| `" << method << "` | " << (run->stable ? "yes" : "**no**: " + run->unstable_why)
-          << " | " << number(run->max_error) << " | " << number(run->end_error) << " | "
+      out << "| `" << shown(method) << "` | "
+          << (run->stable ? "yes" : "**no**: " + one_line(run->unstable_why)) << " | "
+          << number(run->max_error) << " | " << number(run->end_error) << " | "
           << number(run->energy_error) << " | "
           << number(double(run->evaluations) / double(run->steps)) << " | "
           << (run->stable ? number(cost_in_evaluations(r, *run)) : "") << " | "
@@ -116,6 +126,140 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
         << "springs once, as an evaluation does) and " << c.factorisations
         << " sparse factorisations; theory allows " << c.products_allowed
         << " products a step (condition number at most " << number(c.condition_bound) << ").\n";
+  }
+}
+
+const Order* order_of(const Results& r, const std::string& scene, const std::string& method) {
+  for (const Order& o : r.orders)
+    if (o.scene == scene && o.method == method) return &o;
+  return nullptr;
+}
+
+const StepLimit* limit_of(const Results& r, const std::string& scene, const std::string& method) {
+  for (const StepLimit& c : r.critical)
+    if (c.scene == scene && c.method == method) return &c;
+  return nullptr;
+}
+
+// What the tests check of each method, in the tests' own words (tests/task1_two_masses.cpp,
+// tests/task4_verlet.cpp), for the student's section.
+std::string order_words(const std::string& integrator) {
+  return integrator == "verlet" ? "order 2 (section 4): the errors shrink 4x when h halves"
+                                : "global error O(h) (handout section 1): order 1";
+}
+
+std::string limit_words(const std::string& integrator) {
+  return integrator == "verlet"
+             ? "(4.5): the central-difference Verlet step is stable for h < 2/w_max whatever "
+               "the damping"
+             : "equation (1.6): stable only for h < 2 zeta/w (b/k for one spring)";
+}
+
+}  // namespace
+
+// The student's explicit Euler and Verlet against theory and against the kit's same method:
+// where they differ, with the law the tests check.
+std::vector<std::string> student_findings(const Results& r) {
+  std::vector<std::string> findings;
+  for (const std::string& integrator : {std::string("explicit-euler"), std::string("verlet")}) {
+    const std::string method = yours + integrator;
+    for (const Scenario& s : r.scenarios) {
+      const Order* o = order_of(r, s.name, method);
+      const StepLimit* c = limit_of(r, s.name, method);
+      const Run* mine = find(r.runs, s.name, method, s.params.step);
+      const Run* kit = find(r.runs, s.name, integrator, s.params.step);
+      const std::string who = "`" + shown(method) + "` on " + s.name;
+      if (mine && !mine->stable &&
+          mine->unstable_why.find("not implemented") != std::string::npos) {
+        findings.push_back(who + ": " + one_line(mine->unstable_why));
+        continue;
+      }
+      if (o && !std::isnan(o->measured) && std::abs(o->measured - o->theory) > 0.15)
+        findings.push_back(who + ": measured order **" + number(o->measured, 3) + "**, theory " +
+                           std::to_string(o->theory) + " (the tests allow ±0.15" +
+                           (o->outside_range
+                                ? "; fitted over its smallest steps, h = " + number(o->h_from) +
+                                      " … " + number(o->h_to) +
+                                      " s, whose errors stayed above a tenth of the motion"
+                                : "") +
+                           "). Checked: " + order_words(integrator) + ".");
+      if (o && std::isnan(o->measured) && s.name == "two-masses")
+        findings.push_back(who +
+                           ": no order could be measured: fewer than three of its runs had an "
+                           "error between rounding and a tenth of the motion.");
+      if (c && c->theory > 0 && !std::isinf(c->theory) && c->measured > 0 &&
+          std::abs(c->measured / c->theory - 1.0) > 0.02)
+        findings.push_back(who + ": critical step measured **" + number(c->measured, 4) +
+                           " s**, theory " + number(c->theory, 4) +
+                           " s (the study allows ±2 %). Checked: " + limit_words(integrator) + ".");
+      if (mine && kit && mine->stable && kit->stable &&
+          std::abs(mine->max_error - kit->max_error) > 1e-6 * kit->max_error + 1e-12)
+        findings.push_back(who + " at h = 0.01 s: largest error " + number(mine->max_error) +
+                           " m, the kit's code of the same method " + number(kit->max_error) +
+                           " m.");
+      if (mine && kit && mine->stable != kit->stable)
+        findings.push_back(who + " at h = 0.01 s: " +
+                           (mine->stable ? std::string("stable")
+                                         : "unstable (" + one_line(mine->unstable_why) + ")") +
+                           ", the kit's code of the same method " +
+                           (kit->stable ? "stable." : "unstable."));
+    }
+  }
+  for (const DampedRun& run : r.damped.runs)
+    if (is_students(run.method) && !run.stable &&
+        run.why.find("not implemented") == std::string::npos)
+      findings.push_back("`" + shown(run.method) + "` on task4-damped (h = " + number(r.damped.h) +
+                         " s, below 2/ω_max = " + number(r.damped.verlet_limit, 4) +
+                         " s): " + run.why +
+                         "; the kit's Verlet runs there. Checked: " + limit_words("verlet") + ".");
+  return findings;
+}
+
+namespace {
+
+// The student's section of the page: the table, then student_findings.
+void student_section(std::ostream& out, const Results& r) {
+  out << "\n## Your code\n\n"
+      << "Your explicit Euler (task 1, `tasks/task1_two_masses/`) and your Verlet (task 4, "
+         "`tasks/task4_verlet/`) ran on the same scenes, each with the kit's code for every other "
+         "task, beside the kit's methods. `explicit-euler` and `verlet` without \"(yours)\" are "
+         "the kit's reference code of the same methods.\n\n"
+      << "| your method | scene | measured order (theory) | critical step measured (theory) | "
+         "largest error at h = 0.01 s: yours | the kit's |\n|---|---|---|---|---|---|\n";
+  for (const std::string& integrator : {std::string("explicit-euler"), std::string("verlet")}) {
+    const std::string method = yours + integrator;
+    for (const Scenario& s : r.scenarios) {
+      const Order* o = order_of(r, s.name, method);
+      const StepLimit* c = limit_of(r, s.name, method);
+      const Run* mine = find(r.runs, s.name, method, s.params.step);
+      const Run* kit = find(r.runs, s.name, integrator, s.params.step);
+      const std::string order =
+          !o ? "—"
+          : std::isnan(o->measured)
+              ? "not measured (" + std::to_string(o->points) + " steps in range)"
+              : number(o->measured, 3) + " (" + std::to_string(o->theory) + ")";
+      const std::string limit = !c || c->theory <= 0 || std::isinf(c->theory)
+                                    ? "—"
+                                    : (c->measured > 0 ? number(c->measured, 4) : "—") + " (" +
+                                          number(c->theory, 4) + ")";
+      const auto error = [](const Run* run) {
+        if (!run) return std::string("—");
+        return run->stable ? number(run->max_error) : "unstable";
+      };
+      out << "| `" << shown(method) << "` | " << s.name << " | " << order << " | " << limit << " | "
+          << error(mine) << " | " << error(kit) << " |\n";
+    }
+  }
+  const std::vector<std::string> findings = student_findings(r);
+  if (findings.empty()) {
+    out << "\nEvery order, critical step and error above matches theory and the kit's code of "
+           "the same method, and your Verlet runs the damped scene below.\n";
+  } else {
+    out << "\nWhere your code differs:\n\n";
+    for (const std::string& f : findings)
+      out << "- " << f << "\n";
+    out << "\n`./lab test task1 --student` and `./lab test task4 --student` check the same laws "
+           "one at a time, and name the likely mistake.\n";
   }
 }
 
@@ -187,7 +331,8 @@ void advice(std::ostream& out, const Results& r) {
 
 }  // namespace
 
-void write_page(const Results& r, const std::string& page, const std::string& figures) {
+void write_page(const Results& r, const std::string& page, const std::string& figures,
+                const std::string& out_dir) {
   const fs::path page_path(page);
   if (page_path.has_parent_path()) fs::create_directories(page_path.parent_path());
   std::ofstream out(page_path);
@@ -197,14 +342,22 @@ void write_page(const Results& r, const std::string& page, const std::string& fi
   out << "# Speed against accuracy: which method, which step\n\n"
       << "<!-- Generated by `./lab tradeoff` (tests/tradeoff/page.cpp): do not edit by hand; "
          "rerun it. -->\n\n"
-      << "Every integrator of the kit and two of Boost.Odeint's (`runge_kutta4` with a fixed "
-         "step, `runge_kutta_dopri5` with an adaptive one) were run on the same force code "
-         "(the kit's reference solutions) on three scenes, for "
-      << number(o.duration) << " s of simulated time at steps h = 0.01 s · 2^k, k = " << o.k_min
-      << " … " << o.k_max << " (the fabric from k = " << o.k_min_fabric
-      << "), and for dopri5 at tolerances " << number(o.tolerances.front()) << " … "
-      << number(o.tolerances.back()) << " (absolute = relative). The whole study took "
-      << seconds(r.total_seconds) << (o.quick ? " (the --quick variant)" : "") << ".\n\n"
+      << (o.student ? "Your explicit Euler and Verlet, every integrator of the kit and two of "
+                      "Boost.Odeint's (`runge_kutta4` with a fixed step, `runge_kutta_dopri5` "
+                      "with an adaptive one) were run on the same scenes (the kit's reference "
+                      "code for everything but your two steps) on "
+                    : "Every integrator of the kit and two of Boost.Odeint's (`runge_kutta4` "
+                      "with a fixed step, `runge_kutta_dopri5` with an adaptive one) were run on "
+                      "the same force code (the kit's reference solutions) on ")
+      << r.scenarios.size() << " scenes, for " << number(o.duration)
+      << " s of simulated time at steps h = 0.01 s · 2^k, k = " << o.k_min << " … " << o.k_max
+      << " (the fabric from k = " << o.k_min_fabric << "), and for dopri5 at tolerances "
+      << number(o.tolerances.front()) << " … " << number(o.tolerances.back())
+      << " (absolute = relative). The whole study took " << seconds(r.total_seconds)
+      << (o.student ? " (the short variant for your code: fewer steps, one timing)"
+          : o.quick ? " (the --quick variant)"
+                    : "")
+      << ".\n\n"
       << "How each number is measured:\n\n"
       << "- **Error**: the largest distance |r_i − r_i,ref| over the particles, compared every "
       << number(o.sample) << " s (or every step, for steps longer than that), m. The table and "
@@ -218,8 +371,9 @@ void write_page(const Results& r, const std::string& page, const std::string& fi
          "the same scene: what a step really costs, the integrator's own work (implicit Euler's "
          "linear solve, velocity Verlet's) included. On two particles a step's fixed costs weigh "
          "more than a 12 ns evaluation.\n"
-      << "- **Wall time**: the minimum of " << o.repeats
-      << " runs without any measuring, in the Release build, one core of this 2-core machine. "
+      << "- **Wall time**: the minimum of " << o.repeats << " runs without any measuring, in the "
+      << (o.student ? "dev" : "Release")
+      << " build, one core of this machine. "
          "Wall times below a millisecond are noisy.\n"
       << "- **Stable**: the run finished without the divergence watch firing, its error stayed "
          "below 10 m, and it never gained more energy over the reference than the scene ever "
@@ -238,11 +392,15 @@ void write_page(const Results& r, const std::string& page, const std::string& fi
          "2 % of theory"
       << (o.quick ? "" : ", then bisecting that bracket")
       << ". The details are under each table.\n";
+  if (o.student) student_section(out, r);
   for (const Scenario& s : r.scenarios)
     scene_section(out, r, s, relative);
+  write_damped_section(out, r.damped, relative);
+  if (r.xpbd) write_xpbd_section(out, *r.xpbd, relative, r.machine);
   advice(out, r);
   out << "\nThe numbers behind this page are in `runs.csv`, `orders.csv`, `critical.csv` and "
-         "`reference.csv` of the study's output directory (`build/release/tradeoff`).\n";
+         "`reference.csv` of the study's output directory (`"
+      << out_dir << "`). This run: " << r.machine << ".\n";
 }
 
 }  // namespace springlab::tradeoff

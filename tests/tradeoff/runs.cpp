@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace springlab::tradeoff {
@@ -59,9 +60,17 @@ void observe(const Scenario& s, Run& run, std::size_t j, const Vectors& r, doubl
 Run measure_kit(const Scenario& s, const std::string& method, double h, bool keep_energy) {
   SceneParameters p = s.params;
   set_number(p, "step", h);
-  set_parameter(p, "integrator", method);
-  Simulation sim(p, lab_implementation());
+  set_parameter(p, "integrator", integrator_of(method));
   Run run = start_run(s, method, h, 0.0);
+  std::optional<Simulation> made;
+  try {
+    made.emplace(p, implementation_of(method));
+  } catch (const std::exception& e) {  // the student's springs refused, or not written
+    run.stable = false;
+    run.unstable_why = e.what();
+    return run;
+  }
+  Simulation& sim = *made;
   const long per = steps_between_samples(s.reference.time[1], h);
   const std::size_t stride = sample_stride(s, per, h);
   try {
@@ -72,6 +81,9 @@ Run measure_kit(const Scenario& s, const std::string& method, double h, bool kee
     }
     sim.check();
   } catch (const DivergenceError& e) {
+    run.stable = false;
+    run.unstable_why = e.what();
+  } catch (const std::exception& e) {  // NotImplemented: the student's task is not written yet
     run.stable = false;
     run.unstable_why = e.what();
   }
@@ -135,8 +147,8 @@ double time_once(const Scenario& s, const std::string& method, double h, double 
   }
   SceneParameters p = s.params;
   set_number(p, "step", h);
-  set_parameter(p, "integrator", method);
-  Simulation sim(p, lab_implementation());
+  set_parameter(p, "integrator", integrator_of(method));
+  Simulation sim(p, implementation_of(method));
   const double start = now();
   sim.advance(steps);
   return now() - start;
@@ -150,6 +162,15 @@ int k_min(const Scenario& s, const StudyOptions& options) {
 
 std::vector<std::string> kit_methods() {
   return integrator_names();
+}
+
+std::vector<std::string> study_methods(const StudyOptions& options) {
+  std::vector<std::string> methods = kit_methods();
+  if (options.student) {
+    methods.push_back(yours + "explicit-euler");
+    methods.push_back(yours + "verlet");
+  }
+  return methods;
 }
 
 Run run_method(const Scenario& s, const std::string& method, double h, double tolerance,
@@ -169,7 +190,8 @@ Run run_method(const Scenario& s, const std::string& method, double h, double to
 double run_work(const Scenario& s, const std::string& method, double h, double duration) {
   // Force evaluations a step, roughly, and implicit Euler's matrix work as evaluations.
   double per_step = 1.0;
-  if (method == "verlet") per_step = 5.0;
+  if (integrator_of(method) == "verlet") per_step = 5.0;
+  if (method == "xpbd") per_step = 0.3 * s.params.xpbd.substeps * s.params.xpbd.iterations;
   if (method == "rk4" || method == odeint_rk4) per_step = 4.0;
   if (method == "implicit-euler") per_step = 12.0;
   return per_step * duration / h * double(s.params.rows * s.params.cols);
@@ -177,13 +199,13 @@ double run_work(const Scenario& s, const std::string& method, double h, double d
 
 std::vector<Run> run_scene(const Scenario& s, const StudyOptions& options, Progress& progress) {
   std::vector<Run> runs;
-  std::vector<std::string> methods = kit_methods();
+  std::vector<std::string> methods = study_methods(options);
   methods.push_back(odeint_rk4);
   const double repeats = 1.0 + options.repeats;
   for (const std::string& method : methods) {
     for (int k = k_min(s, options); k <= options.k_max; ++k) {
       const double h = std::ldexp(s.params.step, k);
-      progress.begin(s.name + ": " + method + " at h = " + number(h) + " s");
+      progress.begin(s.name + ": " + shown(method) + " at h = " + number(h) + " s");
       runs.push_back(run_method(s, method, h, 0.0, options));
       progress.done(repeats * run_work(s, method, h, options.duration));
     }

@@ -15,6 +15,37 @@ const Implementation& lab_implementation() {
   return implementation();  // this target is compiled in the reference namespace
 }
 
+bool is_students(const std::string& method) {
+  return method.rfind(yours, 0) == 0;
+}
+
+std::string integrator_of(const std::string& method) {
+  return is_students(method) ? method.substr(yours.size()) : method;
+}
+
+std::string shown(const std::string& method) {
+  return is_students(method) ? integrator_of(method) + " (yours)" : method;
+}
+
+std::string not_written(const std::string& method) {
+  if (!is_students(method)) return "";
+  SceneParameters p = task_scene(1);
+  p.integrator = integrator_of(method);
+  try {
+    Simulation sim(p, implementation_of(method));
+    sim.step();
+  } catch (const NotImplemented& e) {
+    return e.what();
+  } catch (const std::exception&) {  // written, and wrong: the runs will show how
+  }
+  return "";
+}
+
+const Implementation& implementation_of(const std::string& method) {
+  if (!is_students(method)) return lab_implementation();
+  return student_implementation(integrator_of(method) == "verlet" ? 4 : 1);
+}
+
 double position_error(const Vectors& r, const Vectors& r_ref) {
   return (r - r_ref).colwise().norm().maxCoeff();
 }

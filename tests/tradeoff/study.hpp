@@ -10,6 +10,8 @@
 
 #include <cmath>
 #include <functional>
+#include <optional>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,11 @@ namespace springlab::tradeoff {
 /// What a study runs; --quick shrinks every part of it.
 struct StudyOptions {
   bool quick = false;
+  /// --impl student: the student's explicit Euler (task 1) and Verlet (task 4) beside the kit's
+  /// methods, in about a minute (student_options in main.cpp).
+  bool student = false;
+  /// The comparisons of XPBD with small steps (xpbd_study.cpp): the full study only.
+  bool xpbd = false;
   int repeats = 3;         ///< wall time is the minimum over this many runs
   double duration = 5.12;  ///< s, 512 lab steps: a whole number of every step in the sweep
   double sample = 0.04;    ///< s, the output times errors are measured at (a multiple of h ≤ it)
@@ -63,8 +70,22 @@ struct Run {
   std::vector<double> energy;  ///< J at the output times (kept for the lab step only)
 };
 
-/// The kit's six integrators, then Odeint's fixed-step RK4 and adaptive Dormand–Prince.
+/// The kit's integrators (integrator_names()), then Odeint's fixed-step RK4 and adaptive
+/// Dormand–Prince.
 std::vector<std::string> kit_methods();
+
+/// The student's methods are named "yours:explicit-euler" and "yours:verlet": the integrator
+/// after the colon, run on student_implementation(1) or (4) (the student's task with the
+/// reference for the others).
+inline const std::string yours = "yours:";
+bool is_students(const std::string& method);
+/// The integrator a method runs: "verlet" for "yours:verlet".
+std::string integrator_of(const std::string& method);
+/// As the page shows it: "verlet (yours)".
+std::string shown(const std::string& method);
+
+/// The fixed-step methods a study runs: the kit's, then the student's when options.student.
+std::vector<std::string> study_methods(const StudyOptions& options);
 inline const std::string odeint_rk4 = "odeint-rk4";
 inline const std::string odeint_dopri5 = "odeint-dopri5";
 
@@ -116,9 +137,11 @@ struct Order {
   double measured = 0.0;            ///< NaN when too few points lie in the asymptotic range
   double h_from = 0.0, h_to = 0.0;  ///< s, the fitted range
   int points = 0;
+  bool outside_range = false;  ///< fitted over the smallest steps, their errors out of the range
 };
 
-std::vector<Order> measured_orders(const Scenario& s, const std::vector<Run>& runs);
+std::vector<Order> measured_orders(const Scenario& s, const std::vector<Run>& runs,
+                                   const StudyOptions& options);
 int theoretical_order(const std::string& method);
 
 /// The cheapest stable run reaching error ≤ level, by wall time or by force evaluations.
@@ -154,6 +177,90 @@ SolverCount count_solver_work(const Scenario& s, const std::string& method, long
 /// in [m_min, m_max + 2 max_i Σ_{s ∋ i}(h b_s + h² k_s)], and so do its diagonal's entries.
 long cg_product_bound(const Scene& scene, double h, double tolerance, double* condition = nullptr);
 
+/// One run of the XPBD comparisons (xpbd_study.cpp), observed every frame.
+struct XpbdRun {
+  std::string label;  ///< "xpbd 8×1", "implicit-euler h = 0.02"
+  bool stable = true;
+  std::string why;             ///< when it diverged
+  double error = 0.0;          ///< m, the largest distance to the reference (when there is one)
+  double strain = 0.0;         ///< the largest (L − ℓ0)/ℓ0 over the springs and the run
+  double frame_seconds = 0.0;  ///< wall time of a frame, s (the run's own, measuring included)
+  long projections = 0;        ///< XPBD's constraint projections in all
+  long evaluations = 0;        ///< a(r, v) calls in all
+  std::vector<double> time;    ///< s, every frame
+  std::vector<double> energy;  ///< (E − floor)/(E_0 − floor) at those times
+};
+
+struct XpbdPair {
+  bool stiff = false;  ///< the fabric with k × stiff_factor
+  int n = 1;
+  XpbdRun substeps;    ///< n substeps × 1 iteration
+  XpbdRun iterations;  ///< 1 substep × n iterations
+};
+
+struct XpbdStiffness {
+  double factor = 1.0;        ///< k × this for every family
+  std::vector<XpbdRun> runs;  ///< each method at the frame budget
+};
+
+/// The three comparisons of XPBD with small steps (Macklin et al. 2019) on the kit's fabric.
+struct XpbdStudy {
+  double frame = 0.0, duration = 0.0;  ///< s
+  double stiff_factor = 0.0;
+  double lab_reference_error = 0.0, stiff_reference_error = 0.0;    ///< m
+  double lab_reference_strain = 0.0, stiff_reference_strain = 0.0;  ///< largest (L − ℓ0)/ℓ0
+  std::vector<XpbdPair> pairs;                                      ///< claim 1
+  double budget_seconds = 0.0;           ///< implicit Euler's wall time a frame
+  double evaluation_seconds = 0.0;       ///< one force evaluation's, for scale
+  int budget_substeps = 1;               ///< XPBD substeps (1 iteration) within the budget
+  int budget_symplectic_steps = 1;       ///< symplectic Euler steps within it
+  double equilibrium_energy = 0.0;       ///< J, the hanging equilibrium's
+  std::vector<XpbdRun> energy;           ///< claim 2: the reference (rk4), then the methods
+  std::vector<XpbdStiffness> stiffness;  ///< claim 3
+};
+
+/// Runs the comparisons on the study's fabric scenario (its reference included).
+XpbdStudy xpbd_study(const Scenario& fabric, const StudyOptions& options, Progress& progress);
+void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string& figures,
+                        const std::string& machine);
+/// gnuplot commands drawing its two figures into `figures` (data files written into `dir`).
+std::string write_xpbd_figures(const XpbdStudy& x, const std::string& dir,
+                               const std::string& figures);
+
+/// Where the fabric hangs (critical.cpp): the scene at rest there, and how well it balances.
+struct Equilibrium {
+  Scene scene;
+  double residual = 0.0;  ///< m/s², the largest acceleration left
+  int newton_steps = 0;
+};
+Equilibrium hanging_equilibrium(const SceneParameters& params);
+
+/// Task 4's damped scene (common/scenes/task4-damped.toml): the lab's Verlet, textbook Verlet
+/// and, with --impl student, the student's, at the scene's step for its duration.
+struct DampedRun {
+  std::string method;  ///< "verlet", "textbook-verlet", "yours:verlet"
+  bool stable = true;
+  std::string why;  ///< how it ended when not stable
+  double evaluations_a_step = 0.0;
+  std::vector<double> time;    ///< s
+  std::vector<double> energy;  ///< J, total, every step while finite
+};
+
+struct DampedScene {
+  double h = 0.0;                ///< the scene's step, s
+  double textbook_limit = 0.0;   ///< s: symplectic Euler's exact limit, textbook Verlet's too
+  double verlet_limit = 0.0;     ///< s: 2/ω_max
+  double iteration_limit = 0.0;  ///< s: where task 4's iteration stops settling in time
+  double omega_max = 0.0;        ///< rad/s
+  double zeta = 0.0;             ///< the damping ratio of the mode at ω_max, φᵀCφ/(2ω)
+  std::vector<DampedRun> runs;
+};
+
+DampedScene damped_scene(const StudyOptions& options);
+void write_damped_section(std::ostream& out, const DampedScene& d, const std::string& figures);
+std::string write_damped_figure(const DampedScene& d, const std::string& dir,
+                                const std::string& figures);
+
 struct Results {
   StudyOptions options;
   std::vector<Scenario> scenarios;
@@ -164,6 +271,9 @@ struct Results {
   double implicit_fabric_cost = std::nan("");  ///< step_cost of implicit-euler on the fabric
   SolverCount implicit_fabric_solves;          ///< its counted solver work at the lab step
   double total_seconds = 0.0;
+  std::optional<XpbdStudy> xpbd;  ///< the full study only
+  DampedScene damped;
+  std::string machine;  ///< the processor, cores and load it ran with
 };
 
 /// What one step of a run cost, in units of one force evaluation's time on its scene: the wall
@@ -181,10 +291,15 @@ double step_cost(const Scenario& s, const std::string& method);
 /// The --quick checks; each failure as one line (expected, measured, what it means).
 std::vector<std::string> check(const Results& r);
 
+/// Where the student's explicit Euler and Verlet differ from theory or from the kit's same
+/// method (order, critical step, error, the damped scene), one line each, in the tests' words.
+std::vector<std::string> student_findings(const Results& r);
+
 void write_csv(const Results& r, const std::string& dir);
 /// gnuplot data and scripts in `dir`, figures (SVG) into `figures`; false when gnuplot failed.
 bool write_figures(const Results& r, const std::string& dir, const std::string& figures);
-void write_page(const Results& r, const std::string& page, const std::string& figures);
+void write_page(const Results& r, const std::string& page, const std::string& figures,
+                const std::string& out_dir);
 
 /// "1.2e-05", "0.01", "3.4 ms": short numbers for tables and messages.
 std::string number(double x, int digits = 3);

@@ -293,7 +293,8 @@ int main(int argc, char** argv) {
   one_arena_under_memory_limits();
   Options options;
   CLI::App cli{"springlab-view: watch, steer and diagnose a springlab scene in a window"};
-  cli.add_option("--scene", options.app.scene, "task1 ... task5 or a scene file (TOML)")
+  cli.add_option("--scene", options.app.scene,
+                 "task1 ... task5, task4-damped or a scene file (TOML)")
       ->capture_default_str();
   cli.add_option("--impl", options.impl, "whose code runs: the reference or the student's")
       ->check(CLI::IsMember({"reference", "student"}))

@@ -1,4 +1,4 @@
-// The lab's scenes as the kit ships them: the text of common/scenes/taskN.toml, compiled in.
+// The lab's scenes as the kit ships them: the text of common/scenes/NAME.toml, compiled in.
 #pragma once
 
 #include <string_view>
@@ -7,7 +7,7 @@
 namespace springlab {
 
 struct BuiltinScene {
-  std::string_view name;  ///< "task1" … "task5"
+  std::string_view name;  ///< "task1" … "task5", "task4-damped"
   std::string_view path;  ///< the file it came from, for error messages
   std::string_view text;  ///< its TOML
 };

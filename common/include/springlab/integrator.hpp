@@ -2,7 +2,7 @@
 // for the numerical method"). Explicit methods only call a(r, v); the implicit one also reads the
 // springs, masses and pins to linearise the spring forces. Handout page: handout/integrators.md.
 //
-// The six methods, chosen by name everywhere (runner, viewer, scene files). "Cost" counts calls
+// The seven methods, chosen by name everywhere (runner, viewer, scene files). "Cost" counts calls
 // of a(r, v) per step; ω is a mode's angular frequency, ζ its damping ratio, ω_max the highest.
 //
 //   explicit-euler    r += h v_n, v += h a_n (the student's task 1 code). Order 1. Cost 1.
@@ -23,6 +23,16 @@
 //                     iterations (about 10 evaluations' worth in all on fabrics from 10×10 to
 //                     300×300, tests/benchmarks/README.md). No step limit on the springs (it
 //                     damps, ≈ hω/2 a step).
+//   xpbd              extended position-based dynamics (Macklin, Müller, Chentanez 2016) with
+//                     small steps (Macklin et al. 2019): each spring a distance constraint of
+//                     compliance 1/k, its damper the constraint's damping term (along the
+//                     spring) plus a damping-only constraint across it; gravity, wind and push
+//                     taken explicitly at the start of each substep. xpbd.substeps substeps of
+//                     xpbd.iterations Gauss–Seidel passes. Order 1 in h/substeps. Cost: no
+//                     a(r, v) call; substeps × iterations passes over the springs and substeps
+//                     evaluations of the external forces. Converged (many iterations) it is
+//                     backward Euler on the springs and dampers, so it has no step limit on them;
+//                     only the wind's drag, explicit, limits a substep to 2m/c.
 #pragma once
 
 #include "springlab/implementation.hpp"
@@ -43,6 +53,9 @@ struct Model {
   const std::vector<Spring>& springs;        ///< every spring and damper inside `acceleration`
   const Eigen::VectorXd& mass;               ///< m_i, kg
   const std::vector<bool>& pinned;           ///< pinned particles never move
+  /// The forces other than the springs and dampers (gravity, wind, push) divided by the mass,
+  /// m/s², zero for pinned particles: what xpbd takes explicitly. Null: there are none.
+  const AccelerationFunction* external = nullptr;
 };
 
 /// What a step does besides evaluating a(r, v), counted rather than timed, so that tests and the
@@ -50,6 +63,8 @@ struct Model {
 struct SolverWork {
   long products = 0;        ///< products A x of a linear solve (each one pass over the springs)
   long factorisations = 0;  ///< sparse LDLᵀ factorisations (implicit Euler's fallback)
+  long projections = 0;     ///< xpbd: constraint projections (one spring, one pass)
+  long external = 0;        ///< xpbd: evaluations of the external forces (Model::external)
 };
 
 /// implicit-euler's conjugate gradients stop when |b − A x| < this × |b| (a direct solve after
@@ -70,7 +85,7 @@ class Integrator {
   virtual SolverWork solver_work() const { return {}; }
 };
 
-/// The six methods above, from the least to the most work per step.
+/// The seven methods above: the six of the lab from the least to the most work per step, then xpbd.
 std::vector<std::string> integrator_names();
 
 bool is_integrator_name(std::string_view name);
@@ -78,8 +93,10 @@ bool is_integrator_name(std::string_view name);
 /// "one of explicit-euler, symplectic-euler, …": the allowed values, for error messages.
 std::string integrator_choices();
 
-/// The integrator `name`; explicit-euler and verlet run the functions of `impl`. Throws
-/// InvalidParameter naming the known integrators for an unknown name.
-std::unique_ptr<Integrator> make_integrator(std::string_view name, const Implementation& impl);
+/// The integrator `name`; explicit-euler and verlet run the functions of `impl`, xpbd takes its
+/// substeps and iterations from `xpbd`. Throws InvalidParameter naming the known integrators for
+/// an unknown name.
+std::unique_ptr<Integrator> make_integrator(std::string_view name, const Implementation& impl,
+                                            const XpbdParameters& xpbd = {});
 
 }  // namespace springlab

@@ -38,6 +38,15 @@ struct WindParameters {
   int seed = 1;              ///< the gusts' pattern: the same seed, the same wind
 };
 
+/// XPBD (integrator "xpbd", handout/integrators.md): each step h is split into `substeps`
+/// substeps of h/substeps, and in each the springs' distance constraints are projected
+/// `iterations` times (Gauss–Seidel passes over the springs). Its cost a step is
+/// substeps × iterations passes over the springs.
+struct XpbdParameters {
+  int substeps = 10;   ///< substeps a step (each h/substeps long), a count
+  int iterations = 1;  ///< Gauss–Seidel passes over the constraints in each substep, a count
+};
+
 /// One scene: a rows×cols grid of equal masses, its springs and forces, its start and how to step
 /// it. The defaults are the lab's values (lecture appendix) on the task 1 scene.
 /// Particle sets (pinned, displaced, pushed) are written as text: "none", "all", "top-row",
@@ -64,6 +73,7 @@ struct SceneParameters {
   double step = 0.01;                         ///< h, the fixed time step, s
   double duration = 10.0;                     ///< simulated time of a run, s
   std::string integrator = "explicit-euler";  ///< an integrator name (see integrator.hpp)
+  XpbdParameters xpbd;                        ///< substeps and iterations of "xpbd"
 };
 
 /// The allowed values of a numeric field: min ≤ value ≤ max, with strict ends where *_open.
@@ -159,6 +169,12 @@ void for_each_field(Params& p, Visitor&& visit) {
   visit(FieldInfo{"step", "s", "h, the fixed time step", {0.0, 10.0, true}}, p.step);
   visit(FieldInfo{"duration", "s", "simulated time of a run", {0.0, 1e7}}, p.duration);
   visit(FieldInfo{"integrator", "", "the integrator's name", {}}, p.integrator);
+  visit(FieldInfo{"xpbd.substeps", "", "xpbd: substeps a step", {1, 1e4, false, false, true}},
+        p.xpbd.substeps);
+  visit(
+      FieldInfo{
+          "xpbd.iterations", "", "xpbd: constraint passes a substep", {1, 1e4, false, false, true}},
+      p.xpbd.iterations);
 }
 
 /// Checks every field against its range and the fields against each other (rows·cols ≥ 2, the

@@ -39,10 +39,11 @@ void validate(const Scene& scene);
 /// compiled into the kit. Throws InvalidParameter for any other number.
 SceneParameters task_scene(int task);
 
-/// "task1" … "task5".
+/// "task1" … "task5", then "task4-damped" (task 4's grid, dampers 4 × the lab's, h = 0.085 s,
+/// where textbook Verlet diverges and the lab's does not: handout section 4).
 std::vector<std::string> task_scene_names();
 
-/// The built-in scene "task1" … "task5"; otherwise the scene file at that path (scene_file.hpp).
+/// A built-in scene (task_scene_names); otherwise the scene file at that path (scene_file.hpp).
 SceneParameters load_scene(const std::string& name_or_path);
 
 }  // namespace springlab

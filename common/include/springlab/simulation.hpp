@@ -70,6 +70,12 @@ class Simulation {
   /// gravity, wind, masses and pins take the fast path (grid_forces.hpp), equal up to rounding.
   const Vectors& acceleration(const Vectors& r, const Vectors& v);
 
+  /// The forces besides the springs and dampers, divided by the mass: gravity, the wind at the
+  /// step's start time and the push, held at zero for pinned particles, m/s². What xpbd takes
+  /// explicitly (Model::external); not a force evaluation (external_evaluations counts it).
+  const Vectors& external_acceleration(const Vectors& r, const Vectors& v);
+  long external_evaluations() const { return external_evaluations_; }
+
   /// Whether acceleration() takes the fast path; set_fast_forces(false) turns it off (to compare
   /// the two), true turns it back on where the scene allows it.
   bool fast_forces() const { return grid_.has_value() && use_grid_; }
@@ -122,11 +128,13 @@ class Simulation {
   const Implementation* impl_;
   std::unique_ptr<Integrator> integrator_;
   AccelerationFunction acceleration_function_;
+  AccelerationFunction external_function_;
   DivergenceLimits limits_;
   double reference_energy_ = 0.0;
   double start_time_ = 0.0;  // s
   long steps_ = 0;
   long evaluations_ = 0;
+  long external_evaluations_ = 0;
   Eigen::VectorXd inverse_mass_;  // 1/m_i
   double same_mass_ = 0.0;  // every particle's mass when they are all equal (the lab's), else 0
   std::vector<int> pinned_list_;   // the pinned particles, ascending (list_pins)
@@ -134,6 +142,7 @@ class Simulation {
   std::vector<int> pushed_;        // the particles the push acts on
   Vectors start_position_;         // where gravity's potential energy is zero
   Vectors force_, acceleration_;
+  Vectors external_force_, external_;       // external_acceleration's
   std::optional<Particles> stretch_start_;  // the state a diagnosis replays from (small scenes)
   double stretch_time_ = 0.0;               // s, its time
   long stretch_steps_ = 0;                  // steps since then

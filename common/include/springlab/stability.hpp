@@ -152,7 +152,13 @@ struct CriticalStep {
 ///                        the damping is proportional to the stiffness, close on the lab grids);
 ///   implicit-euler       infinity without drag; by bisection with it (the drag is explicit:
 ///                        about 2m/c).
-CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator);
+///   xpbd                 no limit from the springs and dampers (converged, a substep is
+///                        backward Euler on them); with drag, which it takes explicitly, an
+///                        estimate: each substep below 2m/c, so h < xpbd_substeps · 2m/c.
+///                        Its other limit is accuracy, not stability: few substeps of few
+///                        iterations leave stiff springs stretched (handout/integrators.md).
+CriticalStep critical_step_of(const LinearModel& model, std::string_view integrator,
+                              int xpbd_substeps = XpbdParameters{}.substeps);
 
 /// The critical step of `integrator` estimated from bounds alone, for scenes too large for
 /// eigen-solves: ω_max ≤ frequency_bound (rad/s) and every mode's damping rate c ≤ damping_bound
@@ -160,7 +166,8 @@ CriticalStep critical_step_of(const LinearModel& model, std::string_view integra
 /// c/m of an explicit drag (1/s), limits implicit Euler and velocity Verlet to 2/drag_rate. Not
 /// computed for explicit-euler, whose limit hangs on each mode's damping ratio.
 CriticalStep estimated_critical_step(std::string_view integrator, double frequency_bound,
-                                     double damping_bound, double drag_rate = 0.0);
+                                     double damping_bound, double drag_rate = 0.0,
+                                     int xpbd_substeps = XpbdParameters{}.substeps);
 
 /// 1e-12^(1/verlet_max_iterations): the largest factor h c/2 by which each estimate of task 4's
 /// Verlet iteration may shrink the error and still settle in time (0.76).

@@ -1,0 +1,240 @@
+// XPBD, extended position-based dynamics, with small steps (integrator.hpp; handout/integrators.md,
+// "XPBD"). Written from the method's equations for the kit's spring–damper model:
+//
+// Each step h is cut into N = xpbd.substeps substeps of length s = h/N. A substep
+//   1. kicks and drifts with the forces that are not springs: v += s a_ext(r, v), x = r + s v
+//      (gravity, wind, push; pinned particles have none and do not move);
+//   2. projects every spring's constraint C = |x_p − x_q| − ℓ0 with compliance α = 1/k, in
+//      xpbd.iterations Gauss–Seidel passes over the springs, each moving p and q at once:
+//        Δλ = (−C − α̃ λ − γ ∇C·(x − r)) / ((1 + γ)(w_p + w_q) + α̃),  α̃ = α/s², γ = α̃ β s,
+//        x_p += w_p Δλ n,  x_q −= w_q Δλ n,  λ += Δλ,
+//      n the unit vector from q to p, w = 1/m (0 when pinned), β = b the damper's coefficient,
+//      λ summed over the passes of one substep. Multiplied through by k s², the same update reads
+//        Δλ = (−k s² C − λ − b s n·(Δ_p − Δ_q)) / ((k s² + b s)(w_p + w_q) + 1),
+//      Δ_i = x_i − r_i the move of particle i in this substep so far: finite for k = 0 (a damper
+//      alone) and tending to −C/(w_p + w_q), a rigid rod, as k → ∞; its denominator is at least 1.
+//      The kit's damper, F = −b (v_p − v_q), also acts across the spring, where the constraint's
+//      gradient has no component: that part is a second, damping-only constraint along
+//      t = (−n_y, n_x), the same update with k = 0:
+//        Δμ = (−μ − b s t·(Δ_p − Δ_q)) / (b s (w_p + w_q) + 1),  x_p += w_p Δμ t,  x_q −= w_q Δμ t;
+//   3. takes the velocity from the move: v = (x − r)/s, and r = x.
+//
+// Converged (λ and μ settled), λ n + μ t = s² (−k C n − b (x_p − r_p − x_q + r_q)/s): the spring
+// and damper forces at the end of the substep, so the substep is backward Euler on the springs and
+// dampers (not linearised) and symplectic Euler on the rest. Every projection moves p and q by
+// opposite momenta (m_p w_p = m_q w_q = 1), so the springs never change the total momentum.
+//
+// The order of a pass: springs are coloured so that no two of a colour share a particle (greedy,
+// in list order: each takes the first colour free at both ends; about 20 on a fabric), and a pass
+// goes colour by colour, each colour's springs in list order. Within a colour the projections are
+// independent: the processor overlaps them (a pass in plain list order waits on each spring's
+// square root and divisions before the next, which shares a particle with it, can start), and on
+// large scenes (colours of 131072 springs or more) they are split over threads (parallel.hpp) with
+// the same result. A projection's denominators depend only on s, k, b and the ends' masses: they
+// are computed once for each kind of spring, not per projection.
+#include "integrators.hpp"
+#include "springlab/parallel.hpp"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace springlab::detail {
+namespace {
+
+// One spring as a pass reads it: its ends and its kind, whose coefficients it shares with every
+// spring of the same k, b, ℓ0 and end masses (a fabric has a few kinds: three families, free or
+// pinned ends). A pass reads 12 bytes a spring.
+struct Constraint {
+  int p = 0, q = 0;
+  int kind = 0;
+};
+
+struct Kind {
+  double rest = 0.0;    // ℓ0, m
+  double ks2 = 0.0;     // k s²
+  double bs = 0.0;      // b s
+  double along = 0.0;   // 1 / ((k s² + b s)(w_p + w_q) + 1)
+  double across = 0.0;  // 1 / (b s (w_p + w_q) + 1)
+};
+
+class Xpbd final : public Integrator {
+ public:
+  explicit Xpbd(const XpbdParameters& parameters) : parameters_(parameters) {}
+  std::string_view name() const override { return "xpbd"; }
+  SolverWork solver_work() const override { return work_; }
+  void restart() override { springs_ = nullptr; }
+
+  void step(const Model& model, double h, Vectors& r, Vectors& v) override {
+    const long n = r.cols();
+    const int substeps = std::max(1, parameters_.substeps);
+    const int iterations = std::max(1, parameters_.iterations);
+    const double s = h / substeps;
+    prepare(model, n, s);
+    const std::size_t springs = model.springs.size();
+    for (int substep = 0; substep < substeps; ++substep) {
+      if (model.external) {
+        v += s * (*model.external)(r, v);
+        ++work_.external;
+      }
+      start_ = r;
+      r += s * v;
+      if (iterations > 1) {
+        std::fill(lambda_.begin(), lambda_.end(), 0.0);
+        std::fill(mu_.begin(), mu_.end(), 0.0);
+      }
+      for (int pass = 0; pass < iterations; ++pass)
+        project(r, iterations > 1);
+      work_.projections += long(springs) * iterations;
+      v = (r - start_) / s;
+    }
+  }
+
+ private:
+  // The colours, the kinds and the constraints in pass order, again whenever the springs, the
+  // masses, the pins or the substep change.
+  void prepare(const Model& model, long n, double s) {
+    const std::vector<Spring>& springs = model.springs;
+    Eigen::VectorXd w(n);
+    for (long i = 0; i < n; ++i)
+      w[i] = model.pinned[std::size_t(i)] ? 0.0 : 1.0 / model.mass[i];
+    const bool same = springs_ == &springs && springs.size() == constraints_.size() && s == s_ &&
+                      w.size() == inverse_mass_.size() && w == inverse_mass_;
+    if (same) return;
+    springs_ = &springs;
+    s_ = s;
+    inverse_mass_ = std::move(w);
+    // λ and μ only matter from a second pass on: with one pass they start at 0 and are not read
+    // again, so they are not kept.
+    const std::size_t kept = parameters_.iterations > 1 ? springs.size() : 0;
+    lambda_.assign(kept, 0.0);
+    mu_.assign(kept, 0.0);
+    // Greedy colouring: a bit per colour used at each particle. A spring with every one of the
+    // 64 colours taken at its ends (a particle with more than 63 springs) goes into a last group
+    // that a pass visits in list order on one thread.
+    std::vector<std::uint64_t> used(std::size_t(n), 0);
+    std::vector<int> colour(springs.size());
+    int colours = 0;
+    for (std::size_t i = 0; i < springs.size(); ++i) {
+      const auto p = std::size_t(springs[i].p), q = std::size_t(springs[i].q);
+      const std::uint64_t taken = used[p] | used[q];
+      const int c = taken == ~std::uint64_t(0) ? 64 : std::countr_one(taken);
+      if (c < 64) used[p] |= std::uint64_t(1) << c, used[q] |= std::uint64_t(1) << c;
+      colour[i] = c;
+      colours = std::max(colours, c + 1);
+    }
+    group_start_.assign(std::size_t(colours) + 1, 0);
+    for (int c : colour)
+      ++group_start_[std::size_t(c) + 1];
+    for (std::size_t c = 1; c < group_start_.size(); ++c)
+      group_start_[c] += group_start_[c - 1];
+    last_group_sequential_ = colours == 65;
+    std::vector<long> next(group_start_.begin(), group_start_.end() - 1);
+    constraints_.resize(springs.size());
+    kinds_.clear();
+    std::map<std::array<double, 4>, int> kind_of;  // (k, b, ℓ0, w_p + w_q) → kind
+    const double s2 = s * s;
+    for (std::size_t i = 0; i < springs.size(); ++i) {
+      const Spring& spring = springs[i];
+      const double sum = inverse_mass_[spring.p] + inverse_mass_[spring.q];
+      const auto [where, added] =
+          kind_of.try_emplace({spring.k, spring.b, spring.rest_length, sum}, int(kinds_.size()));
+      if (added) {
+        Kind kind;
+        kind.rest = spring.rest_length;
+        kind.ks2 = spring.k * s2;
+        kind.bs = spring.b * s;
+        kind.along = 1.0 / ((kind.ks2 + kind.bs) * sum + 1.0);
+        kind.across = 1.0 / (kind.bs * sum + 1.0);
+        kinds_.push_back(kind);
+      }
+      Constraint& c = constraints_[std::size_t(next[std::size_t(colour[i])]++)];
+      c.p = spring.p;
+      c.q = spring.q;
+      c.kind = where->second;
+    }
+  }
+
+  // One Gauss–Seidel pass, colour by colour (the file's comment, step 2).
+  void project(Vectors& r, bool accumulate) {
+    const std::size_t groups = group_start_.size() - 1;
+    const auto range = [&](long begin, long end) {
+      if (accumulate)
+        project_range<true>(r, begin, end);
+      else
+        project_range<false>(r, begin, end);
+    };
+    for (std::size_t g = 0; g < groups; ++g) {
+      const long begin = group_start_[g], end = group_start_[g + 1];
+      // Threads only for colours of many springs (grids from about 500×500): each colour is a
+      // parallel region of its own, and smaller ones spent more time starting and waiting for
+      // threads than projecting (two threads ran a 200×200 fabric 5 times slower than one on a
+      // busy machine).
+      const bool independent = !(g + 1 == groups && last_group_sequential_);
+      if (independent && end - begin >= 8 * parallel_items)
+        for_blocks(end - begin, [&](long b, long e) { range(begin + b, begin + e); });
+      else
+        range(begin, end);
+    }
+  }
+
+  // Projections [begin, end) of the pass order; `accumulate`: λ and μ are kept (several passes).
+  template <bool accumulate>
+  void project_range(Vectors& r, long begin, long end) {
+    double* x = r.data();
+    const double* x0 = start_.data();
+    const double* w = inverse_mass_.data();
+    const Kind* kinds = kinds_.data();
+    double* lambda = lambda_.data();
+    double* mu = mu_.data();
+    for (long i = begin; i < end; ++i) {
+      const Constraint& constraint = constraints_[std::size_t(i)];
+      const Kind& c = kinds[constraint.kind];
+      const long p = 2L * constraint.p, q = 2L * constraint.q;
+      const double dx = x[p] - x[q], dy = x[p + 1] - x[q + 1];
+      const double length_squared = dx * dx + dy * dy;
+      if (length_squared == 0.0) continue;  // no direction: no force, as (1.1) says
+      const double length = std::sqrt(length_squared), inverse_length = 1.0 / length;
+      const double nx = dx * inverse_length, ny = dy * inverse_length;
+      // Δ_p − Δ_q, the ends' relative move in this substep so far.
+      const double mx = (x[p] - x0[p]) - (x[q] - x0[q]);
+      const double my = (x[p + 1] - x0[p + 1]) - (x[q + 1] - x0[q + 1]);
+      const double lambda_i = accumulate ? lambda[i] : 0.0, mu_i = accumulate ? mu[i] : 0.0;
+      const double along =
+          (-c.ks2 * (length - c.rest) - lambda_i - c.bs * (nx * mx + ny * my)) * c.along;
+      const double across = (-mu_i - c.bs * (nx * my - ny * mx)) * c.across;
+      if (accumulate) lambda[i] += along, mu[i] += across;
+      const double cx = along * nx - across * ny, cy = along * ny + across * nx;
+      const double wp = w[constraint.p], wq = w[constraint.q];
+      x[p] += wp * cx;
+      x[p + 1] += wp * cy;
+      x[q] -= wq * cx;
+      x[q + 1] -= wq * cy;
+    }
+  }
+
+  XpbdParameters parameters_;
+  SolverWork work_;
+  const std::vector<Spring>* springs_ = nullptr;  // the list prepare() last saw
+  double s_ = 0.0;                                // the substep it prepared for, s
+  Eigen::VectorXd inverse_mass_;                  // w_i = 1/m_i, 0 for pinned particles
+  std::vector<Constraint> constraints_;           // in pass order: colour by colour
+  std::vector<Kind> kinds_;                       // their coefficients
+  std::vector<long> group_start_;                 // colour c is [start[c], start[c + 1])
+  bool last_group_sequential_ = false;            // the last group is not a colour (see prepare)
+  std::vector<double> lambda_;  // λ of each constraint in this substep, kg·m, in pass order
+  std::vector<double> mu_;      // μ of each damper's sideways constraint, kg·m, in pass order
+  Vectors start_;               // r at the substep's start, m
+};
+
+}  // namespace
+
+std::unique_ptr<Integrator> make_xpbd(const XpbdParameters& parameters) {
+  return std::make_unique<Xpbd>(parameters);
+}
+
+}  // namespace springlab::detail
