@@ -360,3 +360,38 @@ TEST_CASE("Diagnosis: the wind's explicit drag, not implicit Euler, limits h on 
   CHECK_THAT(words, Contains("another integrator does not help"));
   CHECK(critical_step_at_rest(p) <= 1.01 * drag_limit);
 }
+
+// Issue 25's contradiction (reproducer runner/09): on task 2's scene, started 0.2 m from rest,
+// the reference itself diverges with symplectic Euler at 0.95 times the small-motion critical
+// step. Correct code is then never accused: the verdict is the step and the large motion, and a
+// student's correct code at the same h gets the same verdict, not a wrong sign.
+TEST_CASE(
+    "Diagnosis: below the small-motion critical step, large motions blame the step, never "
+    "correct code",
+    "[diagnosis]") {
+  SceneParameters p = task_scene(2);
+  p.integrator = "symplectic-euler";
+  const double critical = critical_step_at_rest(p);
+  p.step = 0.95 * critical;
+  const bool as_student = GENERATE(false, true);
+  CAPTURE(as_student, critical);
+  Implementation impl = implementation();
+  const Implementation* registered = registered_diagnosis_reference();
+  if (as_student) {
+    impl.student_task = 2;  // the reference's code, diagnosed as a student's would be
+    set_diagnosis_reference(&implementation());
+  }
+  Simulation sim(p, impl);
+  const auto error = run_to_divergence(sim, 100000);
+  set_diagnosis_reference(registered);
+  REQUIRE(error);  // the linear limit does not hold this far from rest (the reproducer's finding)
+  const std::string what = error->what();
+  CAPTURE(what);
+  CHECK_THAT(what, Contains("the step is the cause, not the code"));
+  CHECK_THAT(what, Contains(as_student ? "the kit's reference code diverges too"
+                                       : "this is the kit's reference code"));
+  CHECK_THAT(what,
+             Contains("holds for small motions about rest") && Contains("% of their rest length"));
+  CHECK_THAT(what, !Contains("wrong way") && !Contains("your code is the cause") &&
+                       !Contains("Check (1.1)"));
+}

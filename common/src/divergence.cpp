@@ -413,6 +413,10 @@ void set_diagnosis_reference(const Implementation* reference) {
   diagnosis_reference = reference;
 }
 
+const Implementation* registered_diagnosis_reference() {
+  return diagnosis_reference;
+}
+
 Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, double start_time,
                               long steps, const DiagnosisBudget& budget) {
   const SceneParameters& p = start.parameters;

@@ -73,6 +73,8 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
 /// common/impl/registry.cpp; a grader's test program holds no reference of its task, and does
 /// not). Null: none.
 void set_diagnosis_reference(const Implementation* reference);
+/// The one set_diagnosis_reference registered (null: none).
+const Implementation* registered_diagnosis_reference();
 
 /// Replays `steps` steps of h from `start` (the scene as it was at time `start_time`, its
 /// parameters saying h and the integrator) with impl, watching the laws above, and diagnoses.
