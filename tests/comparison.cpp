@@ -7,6 +7,8 @@
 #include "springlab/simulation.hpp"
 #include "springlab/this_implementation.hpp"
 
+#include <cmath>
+
 using namespace springlab;
 using Catch::Matchers::Contains;
 
@@ -77,6 +79,24 @@ TEST_CASE("Comparison: symplectic Euler for explicit Euler loses the energy Eule
   REQUIRE(c.reference.end_energy > c.reference.start_energy);
   REQUIRE(c.yours.end_energy < c.yours.start_energy);
   CHECK_THAT(c.remark, Contains("your energy falls") && Contains("where the reference's rises"));
+}
+
+TEST_CASE("Comparison: where the reference's method diverges and yours does not, that is said",
+          "[diagnosis][comparison]") {
+  // Explicit Euler grows small motions by about x1.005 a step at the lab's h (handout (1.6)): in
+  // 20 s of task 1 its energy passes the divergence watch's bound; symplectic Euler's does not.
+  const SceneParameters p = task_scene(1);
+  Implementation wrong = SPRINGLAB_IMPL::implementation();
+  wrong.explicit_euler_step = symplectic_for_explicit;
+  const Comparison c = run_against_reference(p, wrong, 20.0);
+  INFO(c.remark);
+  REQUIRE_FALSE(std::isnan(c.reference_diverged_at));
+  CHECK(c.reference_diverged_at > 0.0);
+  CHECK(c.reference_diverged_at <= 20.0 + p.step);
+  CHECK(c.yours.end_energy < c.yours.start_energy);
+  CHECK_THAT(c.remark, Contains("the reference's code diverges on this scene at this h") &&
+                           Contains("your run does not: your energy falls"));
+  CHECK_THAT(comparison_figures(c), Contains("the reference's run diverged at t = "));
 }
 
 TEST_CASE("Comparison: gravity without the mass ends with another energy",

@@ -1,5 +1,6 @@
 #include "springlab/comparison.hpp"
 
+#include "springlab/errors.hpp"
 #include "springlab/simulation.hpp"
 
 #include <algorithm>
@@ -19,6 +20,12 @@ std::string number(double x) {
 
 double per_step(const RunRecord& r) {
   return r.steps > 0 ? double(r.evaluations) / double(r.steps) : 0.0;
+}
+
+// "1 force evaluation", "4.6 force evaluations"
+std::string evaluations(const RunRecord& r) {
+  const double n = per_step(r);
+  return number(n) + (n == 1.0 ? " force evaluation" : " force evaluations");
 }
 
 // What is worth a remark: a difference well above what rounding and the order of sums give two
@@ -95,21 +102,50 @@ Comparison compare_runs(const SceneParameters& p, const RunRecord& yours,
 std::optional<Comparison> compare_with_reference(const SceneParameters& p, const RunRecord& yours,
                                                  const Implementation& kit) {
   try {
-    Simulation reference(p, kit);
+    DivergenceLimits quiet;  // only whether and when it diverges: no diagnosis of it
+    quiet.diagnose = false;
+    Simulation reference(p, kit, quiet);
     const double start = reference.diagnostics().total();
-    reference.advance(yours.steps);
-    reference.check();
+    try {
+      reference.advance(yours.steps);
+      reference.check();
+    } catch (const DivergenceError& error) {
+      // The method itself diverges on this scene at this h (explicit Euler beyond its critical
+      // step, say) and your run did not: a fact worth saying, with your run's energy beside it.
+      Comparison c;
+      c.yours = yours;
+      c.reference.start_energy = start;
+      c.reference.steps = reference.steps_taken();
+      c.reference.evaluations = reference.force_evaluations();
+      c.spacing = p.spacing > 0 ? p.spacing : 1.0;
+      c.distance = std::nan("");
+      c.reference_diverged_at = error.time();
+      const double change = yours.end_energy - yours.start_energy;
+      c.remark =
+          "unlike the reference: the reference's code diverges on this scene at this h "
+          "(t = " +
+          number(error.time()) + " s), and your run does not: your energy " +
+          (change < 0 ? "falls" : "rises") + " from " + number(yours.start_energy) + " J to " +
+          number(yours.end_energy) + " J in " + std::to_string(yours.steps) + " steps";
+      return c;
+    }
     return compare_runs(p, yours, record_of(reference, start));
   } catch (const std::exception&) {
-    return std::nullopt;  // the reference diverged or failed here: nothing to compare with
+    return std::nullopt;  // the reference failed here: nothing to compare with
   }
 }
 
 std::string comparison_figures(const Comparison& c) {
   std::ostringstream out;
+  if (!std::isnan(c.reference_diverged_at)) {
+    out << "ends with energy " << number(c.yours.end_energy) << " J; the reference's run diverged "
+        << "at t = " << number(c.reference_diverged_at) << " s; " << evaluations(c.yours)
+        << " a step (the reference's " << number(per_step(c.reference)) << ")";
+    return out.str();
+  }
   out << "ends " << number(c.distance) << " m from the reference's run; energy "
       << number(c.yours.end_energy) << " J (the reference's " << number(c.reference.end_energy)
-      << " J); " << number(per_step(c.yours)) << " force evaluations a step (the reference's "
+      << " J); " << evaluations(c.yours) << " a step (the reference's "
       << number(per_step(c.reference)) << ")";
   return out.str();
 }

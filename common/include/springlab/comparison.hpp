@@ -7,6 +7,7 @@
 #include "springlab/parameters.hpp"
 #include "springlab/types.hpp"
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -33,14 +34,17 @@ struct Comparison {
   double spacing = 1.0;   ///< the grid spacing, m: the scale the distance is judged on
   /// One line, "" when the runs agree: what differs, with figures (comparison.cpp says when).
   std::string remark;
+  /// When the reference's run diverged (and yours did not): its time, s; NaN otherwise.
+  double reference_diverged_at = std::nan("");
 };
 
 /// The two records compared (same scene and steps).
 Comparison compare_runs(const SceneParameters& p, const RunRecord& yours,
                         const RunRecord& reference);
 
-/// Runs `reference` (the kit's reference code) on p for yours.steps steps and compares; nothing
-/// when it fails or diverges there.
+/// Runs `reference` (the kit's reference code) on p for yours.steps steps and compares; when the
+/// reference diverges there (and so yours, which finished, did not), says that with your energy;
+/// nothing when it fails otherwise.
 std::optional<Comparison> compare_with_reference(const SceneParameters& p, const RunRecord& yours,
                                                  const Implementation& reference);
 
