@@ -135,6 +135,16 @@ class SpringsApart {
   }
 };
 
+// Where only the student's step can be the cause (their forces are the reference's, or measured
+// right): what to look at, said alike wherever the diagnosis reaches that verdict.
+constexpr const char* euler_step_words =
+    "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both from the "
+    "values at the start of the step.";
+// Only the step is the student's here: the springs and dampers are the reference's.
+constexpr const char* verlet_step_words =
+    "Look at the step itself: verlet_step, handout section 4. With the backward difference "
+    "(r_n - r_{n-1})/h in the dampers instead of (4.2) (textbook Verlet) the limit drops to "
+    "2(sqrt(1 + zeta^2) - zeta)/omega per mode, below 2/omega_max.";
 const Implementation* diagnosis_reference = nullptr;  // set_diagnosis_reference
 
 // Whether the kit's reference diverges on the scene at its h by time `until`: true for the
@@ -796,13 +806,9 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
               << reference_springs << ": check the spring lists " << spring_list_equations(p)
               << ".";
       else if (forces_right && impl.student_task == 1 && p.integrator == "explicit-euler")
-        words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
-                 "from the values at the start of the step.";
+        words << euler_step_words;
       else if (forces_right && impl.student_task == 4 && p.integrator == "verlet")
-        // Only the step is the student's here: the springs and dampers are the reference's.
-        words << "Look at the step itself: verlet_step, handout section 4. With the backward "
-                 "difference (r_n - r_{n-1})/h in the dampers instead of (4.2) (textbook Verlet) "
-                 "the limit drops to 2(sqrt(1 + zeta^2) - zeta)/omega per mode, below 2/omega_max.";
+        words << verlet_step_words;
       else if (!forces_right)
         words << "Check (1.1), (1.2) and how (2.3) adds them.";
     } else if (!std::isnan(energy_doubled) && !forces_right && signs.exact) {
@@ -818,13 +824,9 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       words << "Why: " << grown << (forces_right ? forces_words : kept_words) << "; " << step_words
             << ". ";
       if (impl.student_task == 1 && p.integrator == "explicit-euler")
-        words << "Look at the step itself: explicit_euler_step, equations (1.4) and (1.5), both "
-                 "from the values at the start of the step.";
+        words << euler_step_words;
       else if (impl.student_task == 4 && p.integrator == "verlet")
-        // Only the step is the student's here: the springs and dampers are the reference's.
-        words << "Look at the step itself: verlet_step, handout section 4. With the backward "
-                 "difference (r_n - r_{n-1})/h in the dampers instead of (4.2) (textbook Verlet) "
-                 "the limit drops to 2(sqrt(1 + zeta^2) - zeta)/omega per mode, below 2/omega_max.";
+        words << verlet_step_words;
       else
         words << "But " << large_motion << ": a smaller h helps.";
     }
