@@ -303,19 +303,28 @@ void Panel::plots(const Session& session, const Viewport& scene_area) {
   ImGui::End();
 }
 
+namespace {
+// A window over the top middle of the scene, at most 640 pixels wide, in its own colour (the
+// caller ends it and pops the colour): the banner and the difference note.
+void begin_overlay(const char* id, const Viewport& scene_area, const ImVec4& colour,
+                   ImGuiWindowFlags extra) {
+  const float width = std::min(scene_area.width - 40.0f, 640.0f);
+  ImGui::SetNextWindowPos(ImVec2(scene_area.left + (scene_area.width - width) / 2, 20));
+  ImGui::SetNextWindowSize(ImVec2(width, 0));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, colour);
+  ImGui::Begin(id, nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
+                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize | extra);
+}
+}  // namespace
+
 // A run that differs from the reference beside it, though nothing diverged: an amber note over
 // the scene with the comparison's remark, so a large difference is seen, not only read.
 void Panel::difference_note(const Session& session, const Viewport& scene_area) {
   const std::optional<Comparison> c = session.comparison();
   if (!c || c->remark.empty()) return;
-  const float note_width = std::min(scene_area.width - 40.0f, 640.0f);
-  ImGui::SetNextWindowPos(ImVec2(scene_area.left + (scene_area.width - note_width) / 2, 20));
-  ImGui::SetNextWindowSize(ImVec2(note_width, 0));
-  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.45f, 0.3f, 0.02f, 0.9f));
-  ImGui::Begin("##difference", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize |
-                   ImGuiWindowFlags_NoInputs);
+  begin_overlay("##difference", scene_area, ImVec4(0.45f, 0.3f, 0.02f, 0.9f),
+                ImGuiWindowFlags_NoInputs);
   ImGui::TextWrapped("Your run, %s", c->remark.c_str());
   ImGui::End();
   ImGui::PopStyleColor();
@@ -328,13 +337,7 @@ void Panel::banner(Session& session, const Viewport& scene_area) {
     difference_note(session, scene_area);
     return;
   }
-  const float banner_width = std::min(scene_area.width - 40.0f, 640.0f);
-  ImGui::SetNextWindowPos(ImVec2(scene_area.left + (scene_area.width - banner_width) / 2, 20));
-  ImGui::SetNextWindowSize(ImVec2(banner_width, 0));
-  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.55f, 0.08f, 0.08f, 0.95f));
-  ImGui::Begin("##banner", nullptr,
-               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                   ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_AlwaysAutoResize);
+  begin_overlay("##banner", scene_area, ImVec4(0.55f, 0.08f, 0.08f, 0.95f), 0);
   ImGui::SetWindowFontScale(1.25f);
   ImGui::TextWrapped("%s", problem.headline.c_str());
   ImGui::SetWindowFontScale(1.0f);
