@@ -15,6 +15,15 @@
 namespace springlab::testing {
 namespace {
 
+// "likely mistake: A; B", or "" when nothing was found.
+std::string likely_mistake(const std::vector<std::string>& said) {
+  if (said.empty()) return "";
+  std::string text = "likely mistake: ";
+  for (std::size_t i = 0; i < said.size(); ++i)
+    text += (i == 0 ? "" : "; ") + said[i];
+  return text;
+}
+
 constexpr double close = 1e-7;  // relative agreement that counts as exact after a fit
 
 std::string number(double x) {
@@ -493,11 +502,7 @@ std::string probe_euler_step(const EulerStep& step) {
            "acceleration after moving the positions)";
     said.push_back(out.str());
   }
-  if (said.empty()) return "";
-  std::string text = "likely mistake: ";
-  for (std::size_t i = 0; i < said.size(); ++i)
-    text += (i == 0 ? "" : "; ") + said[i];
-  return text;
+  return likely_mistake(said);
 }
 
 std::string probe_verlet_step(const VerletStep& step) {
@@ -625,11 +630,7 @@ std::string probe_verlet_step(const VerletStep& step) {
       said.push_back(out.str());
     }
   }
-  if (said.empty()) return "";
-  std::string text = "likely mistake: ";
-  for (std::size_t i = 0; i < said.size(); ++i)
-    text += (i == 0 ? "" : "; ") + said[i];
-  return text;
+  return likely_mistake(said);
 }
 
 std::string probe_gravity(const GravitySum& f) {
@@ -737,11 +738,7 @@ std::string probe_wind(const WindSum& f) {
       what += ": the drag pulls a particle towards the wind's velocity, the wrong way";
     said.push_back(what);
   }
-  if (said.empty()) return "";
-  std::string text = "likely mistake: ";
-  for (std::size_t i = 0; i < said.size(); ++i)
-    text += (i == 0 ? "" : "; ") + said[i];
-  return text;
+  return likely_mistake(said);
 }
 
 std::string probe_pins(const PinHold& f) {
