@@ -34,6 +34,6 @@ class=()
 for i in $(seq 1 "$count"); do class+=("$scratch/student$i"); done
 all=$(seconds "$grade" --out "$scratch/results" "${class[@]}")
 grep -q "^\[$count/$count\]" "$scratch/log" || { cat "$scratch/log"; exit 1; }
-echo "machine: $(nproc) processors ($(sed -n 's/^model name\s*: //p' /proc/cpuinfo | head -n 1))"
+echo "machine: $(nproc) processors ($(awk -F ': ' '/^model name/ { print $2; exit }' /proc/cpuinfo))"
 echo "one submission from a warm build: $one s"
 echo "a class of $count, all different: $all s, $(awk -v a="$all" -v n="$count" 'BEGIN { printf "%.1f", a / n }') s each"

@@ -1,0 +1,16 @@
+#!/usr/bin/env bash
+# ./lab test's closing table reads every test of both trees' JUnit files. With pipefail on, a
+# reader that stops after five lines made the sort before it die of SIGPIPE once the list passed a
+# pipe's buffer (64 KiB): `./lab test` then failed with exit 141 after every test had passed.
+set -euo pipefail
+lab=$1 scratch=$(mktemp -d)
+trap 'rm -rf "$scratch"' EXIT
+for i in $(seq 3000); do
+  echo "<testcase name=\"suite.case $i, named at length to fill the pipe sooner\" time=\"$i.5\"/>"
+done >"$scratch/suite-junit.xml"
+# The function alone, as the script defines it.
+source <(sed -n '/^slowest_tests() {/,/^}/p' "$lab")
+slowest_tests "$scratch/suite-junit.xml" >"$scratch/out"
+cat "$scratch/out"
+[ "$(grep -c ' s  suite.case ' "$scratch/out")" -eq 5 ]
+grep -q '^ *3000.5 s  suite.case 3000, ' "$scratch/out"
