@@ -27,11 +27,12 @@
 // The order of a pass: springs are coloured so that no two of a colour share a particle (greedy,
 // in list order: each takes the first colour free at both ends; about 20 on a fabric), and a pass
 // goes colour by colour, each colour's springs in list order. Within a colour the projections are
-// independent: the processor overlaps them (a pass in plain list order waits on each spring's
-// square root and divisions before the next, which shares a particle with it, can start), and on
-// large scenes (colours of 131072 springs or more) they are split over threads (parallel.hpp) with
-// the same result. A projection's denominators depend only on s, k, b and the ends' masses: they
-// are computed once for each kind of spring, not per projection.
+// independent, so they are computed four at a time: a chunk of a colour is gathered into arrays,
+// projected by one loop GCC vectorises (an AVX2 clone beside the SSE2 one, no fused multiply-adds:
+// the same bits as one at a time), and its moves scattered back. On large scenes (colours of 131072
+// springs or more) the chunks are also split over threads (parallel.hpp) with the same result.
+// A projection's denominators depend only on s, k, b and the ends' masses: they are computed once
+// for each kind of spring, not per projection, and a colour's springs are sorted by kind.
 #include "integrators.hpp"
 #include "springlab/parallel.hpp"
 
@@ -40,6 +41,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -61,6 +63,40 @@ struct Kind {
   double along = 0.0;   // 1 / ((k s² + b s)(w_p + w_q) + 1)
   double across = 0.0;  // 1 / (b s (w_p + w_q) + 1)
 };
+
+constexpr double infinity = std::numeric_limits<double>::infinity();
+
+// A chunk of one colour's constraints of one kind, gathered: the ends' separation d = x_p − x_q
+// and relative move m = Δ_p − Δ_q, λ and μ so far; the kernel writes the updates Δλ (into along),
+// Δμ (across) and the correction c = Δλ n + Δμ t, applied as x_p += w_p c, x_q −= w_q c. Arrays
+// of a chunk's length, so that the kernel's loop is plain and vectorises.
+constexpr int chunk_size = 128;
+struct Chunk {
+  alignas(32) double dx[chunk_size], dy[chunk_size], mx[chunk_size], my[chunk_size];
+  alignas(32) double along[chunk_size], across[chunk_size];  // in: λ, μ; out: Δλ, Δμ
+  alignas(32) double cx[chunk_size], cy[chunk_size];
+};
+
+// The file's step 2 for `count` gathered constraints of kind c, as project_range below writes it
+// for one. At zero length there is no direction, as (1.1) says: dividing by infinity gives n = 0,
+// so no move (c = 0), and the caller keeps λ and μ as they were.
+__attribute__((target_clones("avx2", "default"))) void project_chunk(
+    int count, const Kind c, const double* __restrict dx, const double* __restrict dy,
+    const double* __restrict mx, const double* __restrict my, double* __restrict along_io,
+    double* __restrict across_io, double* __restrict cx, double* __restrict cy) {
+  for (int j = 0; j < count; ++j) {
+    const double length = std::sqrt(dx[j] * dx[j] + dy[j] * dy[j]);
+    const double inverse_length = 1.0 / (length > 0.0 ? length : infinity);
+    const double nx = dx[j] * inverse_length, ny = dy[j] * inverse_length;
+    const double along =
+        (-c.ks2 * (length - c.rest) - along_io[j] - c.bs * (nx * mx[j] + ny * my[j])) * c.along;
+    const double across = (-across_io[j] - c.bs * (nx * my[j] - ny * mx[j])) * c.across;
+    along_io[j] = along;
+    across_io[j] = across;
+    cx[j] = along * nx - across * ny;
+    cy[j] = along * ny + across * nx;
+  }
+}
 
 class Xpbd final : public Integrator {
  public:
@@ -157,6 +193,12 @@ class Xpbd final : public Integrator {
       c.q = spring.q;
       c.kind = where->second;
     }
+    // Within a colour the order does not change the result: by kind, so that a chunk is one kind.
+    const std::size_t independent = group_start_.size() - 1 - (last_group_sequential_ ? 1 : 0);
+    for (std::size_t g = 0; g < independent; ++g)
+      std::stable_sort(constraints_.begin() + group_start_[g],
+                       constraints_.begin() + group_start_[g + 1],
+                       [](const Constraint& a, const Constraint& b) { return a.kind < b.kind; });
   }
 
   // One Gauss–Seidel pass, colour by colour (the file's comment, step 2).
@@ -164,9 +206,9 @@ class Xpbd final : public Integrator {
     const std::size_t groups = group_start_.size() - 1;
     const auto range = [&](long begin, long end) {
       if (accumulate)
-        project_range<true>(r, begin, end);
+        project_chunks<true>(r, begin, end);
       else
-        project_range<false>(r, begin, end);
+        project_chunks<false>(r, begin, end);
     };
     for (std::size_t g = 0; g < groups; ++g) {
       const long begin = group_start_[g], end = group_start_[g + 1];
@@ -175,14 +217,57 @@ class Xpbd final : public Integrator {
       // threads than projecting (two threads ran a 200×200 fabric 5 times slower than one on a
       // busy machine).
       const bool independent = !(g + 1 == groups && last_group_sequential_);
-      if (independent && end - begin >= 8 * parallel_items)
+      if (!independent)
+        accumulate ? project_range<true>(r, begin, end) : project_range<false>(r, begin, end);
+      else if (end - begin >= 8 * parallel_items)
         for_blocks(end - begin, [&](long b, long e) { range(begin + b, begin + e); });
       else
         range(begin, end);
     }
   }
 
-  // Projections [begin, end) of the pass order; `accumulate`: λ and μ are kept (several passes).
+  // Projections [begin, end) of one colour, which share no particle: gathered, projected and
+  // scattered a chunk at a time, each chunk of one kind (the file's comment).
+  template <bool accumulate>
+  void project_chunks(Vectors& r, long begin, long end) {
+    double* x = r.data();
+    const double* x0 = start_.data();
+    const double* w = inverse_mass_.data();
+    Chunk ch;
+    for (long first = begin; first < end;) {
+      const Constraint* constraints = constraints_.data() + first;
+      const int kind = constraints[0].kind;
+      int count = 0;
+      for (; count < chunk_size && first + count < end && constraints[count].kind == kind;
+           ++count) {
+        const long p = 2L * constraints[count].p, q = 2L * constraints[count].q;
+        ch.dx[count] = x[p] - x[q];
+        ch.dy[count] = x[p + 1] - x[q + 1];
+        ch.mx[count] = (x[p] - x0[p]) - (x[q] - x0[q]);
+        ch.my[count] = (x[p + 1] - x0[p + 1]) - (x[q + 1] - x0[q + 1]);
+        ch.along[count] = accumulate ? lambda_[std::size_t(first + count)] : 0.0;
+        ch.across[count] = accumulate ? mu_[std::size_t(first + count)] : 0.0;
+      }
+      project_chunk(count, kinds_[std::size_t(kind)], ch.dx, ch.dy, ch.mx, ch.my, ch.along,
+                    ch.across, ch.cx, ch.cy);
+      for (int j = 0; j < count; ++j) {
+        const long p = 2L * constraints[j].p, q = 2L * constraints[j].q;
+        const double wp = w[constraints[j].p], wq = w[constraints[j].q];
+        x[p] += wp * ch.cx[j];
+        x[p + 1] += wp * ch.cy[j];
+        x[q] -= wq * ch.cx[j];
+        x[q + 1] -= wq * ch.cy[j];
+        if (accumulate && ch.dx[j] * ch.dx[j] + ch.dy[j] * ch.dy[j] > 0.0) {
+          lambda_[std::size_t(first + j)] += ch.along[j];
+          mu_[std::size_t(first + j)] += ch.across[j];
+        }
+      }
+      first += count;
+    }
+  }
+
+  // Projections [begin, end) of the pass order one at a time: the last group, whose springs may
+  // share particles. `accumulate`: λ and μ are kept (several passes).
   template <bool accumulate>
   void project_range(Vectors& r, long begin, long end) {
     double* x = r.data();
