@@ -111,22 +111,26 @@ class Xpbd final : public Integrator {
     const int iterations = std::max(1, parameters_.iterations);
     const double s = h / substeps;
     prepare(model, n, s);
+    state_.resize(4, n);
     const std::size_t springs = model.springs.size();
     for (int substep = 0; substep < substeps; ++substep) {
       if (model.external) {
         v += s * (*model.external)(r, v);
         ++work_.external;
       }
-      start_ = r;
-      r += s * v;
+      // Each particle's x and its substep start r side by side: a projection reads both of an end
+      // from one cache line.
+      state_.topRows<2>() = r + s * v;
+      state_.bottomRows<2>() = r;
       if (iterations > 1) {
         std::fill(lambda_.begin(), lambda_.end(), 0.0);
         std::fill(mu_.begin(), mu_.end(), 0.0);
       }
       for (int pass = 0; pass < iterations; ++pass)
-        project(r, iterations > 1);
+        project(iterations > 1);
       work_.projections += long(springs) * iterations;
-      v = (r - start_) / s;
+      v = (state_.topRows<2>() - state_.bottomRows<2>()) / s;
+      r = state_.topRows<2>();
     }
   }
 
@@ -202,13 +206,13 @@ class Xpbd final : public Integrator {
   }
 
   // One Gauss–Seidel pass, colour by colour (the file's comment, step 2).
-  void project(Vectors& r, bool accumulate) {
+  void project(bool accumulate) {
     const std::size_t groups = group_start_.size() - 1;
     const auto range = [&](long begin, long end) {
       if (accumulate)
-        project_chunks<true>(r, begin, end);
+        project_chunks<true>(begin, end);
       else
-        project_chunks<false>(r, begin, end);
+        project_chunks<false>(begin, end);
     };
     for (std::size_t g = 0; g < groups; ++g) {
       const long begin = group_start_[g], end = group_start_[g + 1];
@@ -218,7 +222,7 @@ class Xpbd final : public Integrator {
       // busy machine).
       const bool independent = !(g + 1 == groups && last_group_sequential_);
       if (!independent)
-        accumulate ? project_range<true>(r, begin, end) : project_range<false>(r, begin, end);
+        accumulate ? project_range<true>(begin, end) : project_range<false>(begin, end);
       else if (end - begin >= 8 * parallel_items)
         for_blocks(end - begin, [&](long b, long e) { range(begin + b, begin + e); });
       else
@@ -229,9 +233,8 @@ class Xpbd final : public Integrator {
   // Projections [begin, end) of one colour, which share no particle: gathered, projected and
   // scattered a chunk at a time, each chunk of one kind (the file's comment).
   template <bool accumulate>
-  void project_chunks(Vectors& r, long begin, long end) {
-    double* x = r.data();
-    const double* x0 = start_.data();
+  void project_chunks(long begin, long end) {
+    double* x = state_.data();  // particle i: x at 4i, 4i + 1, its substep start at 4i + 2, 4i + 3
     const double* w = inverse_mass_.data();
     Chunk ch;
     for (long first = begin; first < end;) {
@@ -240,18 +243,18 @@ class Xpbd final : public Integrator {
       int count = 0;
       for (; count < chunk_size && first + count < end && constraints[count].kind == kind;
            ++count) {
-        const long p = 2L * constraints[count].p, q = 2L * constraints[count].q;
+        const long p = 4L * constraints[count].p, q = 4L * constraints[count].q;
         ch.dx[count] = x[p] - x[q];
         ch.dy[count] = x[p + 1] - x[q + 1];
-        ch.mx[count] = (x[p] - x0[p]) - (x[q] - x0[q]);
-        ch.my[count] = (x[p + 1] - x0[p + 1]) - (x[q + 1] - x0[q + 1]);
+        ch.mx[count] = (x[p] - x[p + 2]) - (x[q] - x[q + 2]);
+        ch.my[count] = (x[p + 1] - x[p + 3]) - (x[q + 1] - x[q + 3]);
         ch.along[count] = accumulate ? lambda_[std::size_t(first + count)] : 0.0;
         ch.across[count] = accumulate ? mu_[std::size_t(first + count)] : 0.0;
       }
       project_chunk(count, kinds_[std::size_t(kind)], ch.dx, ch.dy, ch.mx, ch.my, ch.along,
                     ch.across, ch.cx, ch.cy);
       for (int j = 0; j < count; ++j) {
-        const long p = 2L * constraints[j].p, q = 2L * constraints[j].q;
+        const long p = 4L * constraints[j].p, q = 4L * constraints[j].q;
         const double wp = w[constraints[j].p], wq = w[constraints[j].q];
         x[p] += wp * ch.cx[j];
         x[p + 1] += wp * ch.cy[j];
@@ -269,9 +272,8 @@ class Xpbd final : public Integrator {
   // Projections [begin, end) of the pass order one at a time: the last group, whose springs may
   // share particles. `accumulate`: λ and μ are kept (several passes).
   template <bool accumulate>
-  void project_range(Vectors& r, long begin, long end) {
-    double* x = r.data();
-    const double* x0 = start_.data();
+  void project_range(long begin, long end) {
+    double* x = state_.data();  // as in project_chunks
     const double* w = inverse_mass_.data();
     const Kind* kinds = kinds_.data();
     double* lambda = lambda_.data();
@@ -279,15 +281,15 @@ class Xpbd final : public Integrator {
     for (long i = begin; i < end; ++i) {
       const Constraint& constraint = constraints_[std::size_t(i)];
       const Kind& c = kinds[constraint.kind];
-      const long p = 2L * constraint.p, q = 2L * constraint.q;
+      const long p = 4L * constraint.p, q = 4L * constraint.q;
       const double dx = x[p] - x[q], dy = x[p + 1] - x[q + 1];
       const double length_squared = dx * dx + dy * dy;
       if (length_squared == 0.0) continue;  // no direction: no force, as (1.1) says
       const double length = std::sqrt(length_squared), inverse_length = 1.0 / length;
       const double nx = dx * inverse_length, ny = dy * inverse_length;
       // Δ_p − Δ_q, the ends' relative move in this substep so far.
-      const double mx = (x[p] - x0[p]) - (x[q] - x0[q]);
-      const double my = (x[p + 1] - x0[p + 1]) - (x[q + 1] - x0[q + 1]);
+      const double mx = (x[p] - x[p + 2]) - (x[q] - x[q + 2]);
+      const double my = (x[p + 1] - x[p + 3]) - (x[q + 1] - x[q + 3]);
       const double lambda_i = accumulate ? lambda[i] : 0.0, mu_i = accumulate ? mu[i] : 0.0;
       const double along =
           (-c.ks2 * (length - c.rest) - lambda_i - c.bs * (nx * mx + ny * my)) * c.along;
@@ -313,7 +315,8 @@ class Xpbd final : public Integrator {
   bool last_group_sequential_ = false;            // the last group is not a colour (see prepare)
   std::vector<double> lambda_;  // λ of each constraint in this substep, kg·m, in pass order
   std::vector<double> mu_;      // μ of each damper's sideways constraint, kg·m, in pass order
-  Vectors start_;               // r at the substep's start, m
+  // Rows 0–1: the particles' positions x during a substep's projections; rows 2–3: r at its start.
+  Eigen::Matrix<double, 4, Eigen::Dynamic> state_;  // m
 };
 
 }  // namespace
