@@ -102,6 +102,23 @@ TEST_CASE("XPBD: one substep along a spring is backward Euler", "[integrators][x
   CHECK(sim.force_evaluations() == 0);  // XPBD never calls a(r, v)
 }
 
+TEST_CASE("XPBD: two ends at one point give no direction: nothing moves, nothing is NaN",
+          "[integrators][xpbd]") {
+  // Compressed to zero length, (1.1) has no direction to push along and gives no force; the
+  // projections, one at a time or four at a time, must leave both ends and their λ as they were.
+  const int iterations = GENERATE(1, 3);
+  Simulation sim(xpbd(two_masses(lab.structural.k, lab.structural.b, lab.mass, -1.0, 0.01, "xpbd"),
+                      4, iterations),
+                 implementation());
+  const Vectors start = sim.particles().position;
+  REQUIRE((start.col(1) - start.col(0)).norm() == 0.0);
+  sim.step();
+  CAPTURE(iterations);
+  CHECK(sim.particles().position == start);
+  CHECK(sim.particles().velocity.isZero(0.0));
+  CHECK(sim.integrator().solver_work().projections == 4L * iterations);
+}
+
 TEST_CASE("XPBD: the damper acts across the spring too, as (1.2) says", "[integrators][xpbd]") {
   // (1.2) is F = -b (v_p - v_q), whatever the direction. Two masses on a spring of k = 0 moving
   // apart sideways: each substep is backward Euler on the relative velocity w, so after N

@@ -49,7 +49,7 @@ namespace springlab::detail {
 namespace {
 
 // One spring as a pass reads it: its ends and its kind, whose coefficients it shares with every
-// spring of the same k, b, ℓ0 and end masses (a fabric has a few kinds: three families, free or
+// spring of the same k, b, ℓ0 and ends' masses (a fabric has a few kinds: three families, free or
 // pinned ends). A pass reads 12 bytes a spring.
 struct Constraint {
   int p = 0, q = 0;
@@ -57,23 +57,26 @@ struct Constraint {
 };
 
 struct Kind {
-  double rest = 0.0;    // ℓ0, m
-  double ks2 = 0.0;     // k s²
-  double bs = 0.0;      // b s
-  double along = 0.0;   // 1 / ((k s² + b s)(w_p + w_q) + 1)
-  double across = 0.0;  // 1 / (b s (w_p + w_q) + 1)
+  double rest = 0.0;          // ℓ0, m
+  double ks2 = 0.0;           // k s²
+  double bs = 0.0;            // b s
+  double along = 0.0;         // 1 / ((k s² + b s)(w_p + w_q) + 1)
+  double across = 0.0;        // 1 / (b s (w_p + w_q) + 1)
+  double wp = 0.0, wq = 0.0;  // the ends' 1/m (0 when pinned), 1/kg
 };
 
 constexpr double infinity = std::numeric_limits<double>::infinity();
 
 // A chunk of one colour's constraints of one kind, gathered: the ends' separation d = x_p − x_q
-// and relative move m = Δ_p − Δ_q, λ and μ so far; the kernel writes the updates Δλ (into along),
-// Δμ (across) and the correction c = Δλ n + Δμ t, applied as x_p += w_p c, x_q −= w_q c. Arrays
-// of a chunk's length, so that the kernel's loop is plain and vectorises.
+// and relative move m = Δ_p − Δ_q; the kernel writes the updates Δλ (along), Δμ (across) and the
+// correction c = Δλ n + Δμ t, applied as x_p += w_p c, x_q −= w_q c. Arrays of a chunk's length,
+// so that the kernel's loop is plain and vectorises.
 constexpr int chunk_size = 128;
+// λ and μ of a single pass: always 0 (read in place of the kept ones, which are in pass order).
+constexpr double zeros[chunk_size] = {};
 struct Chunk {
   alignas(32) double dx[chunk_size], dy[chunk_size], mx[chunk_size], my[chunk_size];
-  alignas(32) double along[chunk_size], across[chunk_size];  // in: λ, μ; out: Δλ, Δμ
+  alignas(32) double along[chunk_size], across[chunk_size];  // Δλ, Δμ
   alignas(32) double cx[chunk_size], cy[chunk_size];
 };
 
@@ -82,17 +85,18 @@ struct Chunk {
 // so no move (c = 0), and the caller keeps λ and μ as they were.
 __attribute__((target_clones("avx2", "default"))) void project_chunk(
     int count, const Kind c, const double* __restrict dx, const double* __restrict dy,
-    const double* __restrict mx, const double* __restrict my, double* __restrict along_io,
-    double* __restrict across_io, double* __restrict cx, double* __restrict cy) {
+    const double* __restrict mx, const double* __restrict my, const double* __restrict lambda,
+    const double* __restrict mu, double* __restrict along_out, double* __restrict across_out,
+    double* __restrict cx, double* __restrict cy) {
   for (int j = 0; j < count; ++j) {
     const double length = std::sqrt(dx[j] * dx[j] + dy[j] * dy[j]);
     const double inverse_length = 1.0 / (length > 0.0 ? length : infinity);
     const double nx = dx[j] * inverse_length, ny = dy[j] * inverse_length;
     const double along =
-        (-c.ks2 * (length - c.rest) - along_io[j] - c.bs * (nx * mx[j] + ny * my[j])) * c.along;
-    const double across = (-across_io[j] - c.bs * (nx * my[j] - ny * mx[j])) * c.across;
-    along_io[j] = along;
-    across_io[j] = across;
+        (-c.ks2 * (length - c.rest) - lambda[j] - c.bs * (nx * mx[j] + ny * my[j])) * c.along;
+    const double across = (-mu[j] - c.bs * (nx * my[j] - ny * mx[j])) * c.across;
+    along_out[j] = along;
+    across_out[j] = across;
     cx[j] = along * nx - across * ny;
     cy[j] = along * ny + across * nx;
   }
@@ -176,15 +180,17 @@ class Xpbd final : public Integrator {
     std::vector<long> next(group_start_.begin(), group_start_.end() - 1);
     constraints_.resize(springs.size());
     kinds_.clear();
-    std::map<std::array<double, 4>, int> kind_of;  // (k, b, ℓ0, w_p + w_q) → kind
+    std::map<std::array<double, 5>, int> kind_of;  // (k, b, ℓ0, w_p, w_q) → kind
     const double s2 = s * s;
     for (std::size_t i = 0; i < springs.size(); ++i) {
       const Spring& spring = springs[i];
-      const double sum = inverse_mass_[spring.p] + inverse_mass_[spring.q];
+      const double wp = inverse_mass_[spring.p], wq = inverse_mass_[spring.q], sum = wp + wq;
       const auto [where, added] =
-          kind_of.try_emplace({spring.k, spring.b, spring.rest_length, sum}, int(kinds_.size()));
+          kind_of.try_emplace({spring.k, spring.b, spring.rest_length, wp, wq}, int(kinds_.size()));
       if (added) {
         Kind kind;
+        kind.wp = wp;
+        kind.wq = wq;
         kind.rest = spring.rest_length;
         kind.ks2 = spring.k * s2;
         kind.bs = spring.b * s;
@@ -235,7 +241,6 @@ class Xpbd final : public Integrator {
   template <bool accumulate>
   void project_chunks(long begin, long end) {
     double* x = state_.data();  // particle i: x at 4i, 4i + 1, its substep start at 4i + 2, 4i + 3
-    const double* w = inverse_mass_.data();
     Chunk ch;
     for (long first = begin; first < end;) {
       const Constraint* constraints = constraints_.data() + first;
@@ -248,14 +253,14 @@ class Xpbd final : public Integrator {
         ch.dy[count] = x[p + 1] - x[q + 1];
         ch.mx[count] = (x[p] - x[p + 2]) - (x[q] - x[q + 2]);
         ch.my[count] = (x[p + 1] - x[p + 3]) - (x[q + 1] - x[q + 3]);
-        ch.along[count] = accumulate ? lambda_[std::size_t(first + count)] : 0.0;
-        ch.across[count] = accumulate ? mu_[std::size_t(first + count)] : 0.0;
       }
-      project_chunk(count, kinds_[std::size_t(kind)], ch.dx, ch.dy, ch.mx, ch.my, ch.along,
-                    ch.across, ch.cx, ch.cy);
+      const Kind& c = kinds_[std::size_t(kind)];
+      project_chunk(count, c, ch.dx, ch.dy, ch.mx, ch.my,
+                    accumulate ? lambda_.data() + first : zeros,
+                    accumulate ? mu_.data() + first : zeros, ch.along, ch.across, ch.cx, ch.cy);
+      const double wp = c.wp, wq = c.wq;
       for (int j = 0; j < count; ++j) {
         const long p = 4L * constraints[j].p, q = 4L * constraints[j].q;
-        const double wp = w[constraints[j].p], wq = w[constraints[j].q];
         x[p] += wp * ch.cx[j];
         x[p + 1] += wp * ch.cy[j];
         x[q] -= wq * ch.cx[j];
