@@ -122,10 +122,17 @@ class Xpbd final : public Integrator {
         v += s * (*model.external)(r, v);
         ++work_.external;
       }
-      // Each particle's x and its substep start r side by side: a projection reads both of an end
-      // from one cache line.
-      state_.topRows<2>() = r + s * v;
-      state_.bottomRows<2>() = r;
+      // Each particle's x = r + s v and its substep start r side by side: a projection reads both
+      // of an end from one cache line.
+      double* state = state_.data();
+      const double* position = r.data();
+      const double* velocity = v.data();
+      for (long i = 0; i < 2 * n; i += 2) {
+        state[2 * i] = position[i] + s * velocity[i];
+        state[2 * i + 1] = position[i + 1] + s * velocity[i + 1];
+        state[2 * i + 2] = position[i];
+        state[2 * i + 3] = position[i + 1];
+      }
       if (iterations > 1) {
         std::fill(lambda_.begin(), lambda_.end(), 0.0);
         std::fill(mu_.begin(), mu_.end(), 0.0);
@@ -133,8 +140,14 @@ class Xpbd final : public Integrator {
       for (int pass = 0; pass < iterations; ++pass)
         project(iterations > 1);
       work_.projections += long(springs) * iterations;
-      v = (state_.topRows<2>() - state_.bottomRows<2>()) / s;
-      r = state_.topRows<2>();
+      double* new_position = r.data();
+      double* new_velocity = v.data();
+      for (long i = 0; i < 2 * n; i += 2) {
+        new_velocity[i] = (state[2 * i] - state[2 * i + 2]) / s;
+        new_velocity[i + 1] = (state[2 * i + 1] - state[2 * i + 3]) / s;
+        new_position[i] = state[2 * i];
+        new_position[i + 1] = state[2 * i + 1];
+      }
     }
   }
 
