@@ -41,7 +41,10 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <limits>
+
+#include <immintrin.h>
 #include <map>
 #include <vector>
 
@@ -99,6 +102,67 @@ __attribute__((target_clones("avx2", "default"))) void project_chunk(
     across_out[j] = across;
     cx[j] = along * nx - across * ny;
     cy[j] = along * ny + across * nx;
+  }
+}
+
+// Four projections of one colour and one kind at once, with AVX2 (the file's step 2, the same
+// operations in the same order as project_range, so the same bits): each end's x, y, and substep
+// start x0, y0 are one 32-byte load; four constraints' separations and relative moves are turned
+// into a vector each (a 4×4 transpose), projected together, and each end's move added back with
+// one 16-byte load and store. The four share no particle, so their writes never meet. `lambda`
+// and `mu`: the kept λ and μ of the four (accumulated), or null for a single pass.
+__attribute__((target("avx2"))) void project_four(double* x, const Constraint* c, const Kind& k,
+                                                  double* lambda, double* mu) {
+  __m256d u[4];
+  for (int i = 0; i < 4; ++i) {
+    const __m256d p = _mm256_loadu_pd(x + 4L * c[i].p), q = _mm256_loadu_pd(x + 4L * c[i].q);
+    // (x_p − x0_p) − (x_q − x0_q) in the low half of m, x_p − x_q in the low half of d.
+    const __m256d d = _mm256_sub_pd(p, q);
+    const __m256d m = _mm256_sub_pd(_mm256_sub_pd(p, _mm256_permute2f128_pd(p, p, 0x01)),
+                                    _mm256_sub_pd(q, _mm256_permute2f128_pd(q, q, 0x01)));
+    u[i] = _mm256_permute2f128_pd(d, m, 0x20);  // dx, dy, mx, my
+  }
+  const __m256d t0 = _mm256_unpacklo_pd(u[0], u[1]), t1 = _mm256_unpackhi_pd(u[0], u[1]);
+  const __m256d t2 = _mm256_unpacklo_pd(u[2], u[3]), t3 = _mm256_unpackhi_pd(u[2], u[3]);
+  const __m256d dx = _mm256_permute2f128_pd(t0, t2, 0x20),
+                mx = _mm256_permute2f128_pd(t0, t2, 0x31);
+  const __m256d dy = _mm256_permute2f128_pd(t1, t3, 0x20),
+                my = _mm256_permute2f128_pd(t1, t3, 0x31);
+  const __m256d length_squared = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+  const __m256d length = _mm256_sqrt_pd(length_squared);
+  const __m256d has_direction = _mm256_cmp_pd(length_squared, _mm256_setzero_pd(), _CMP_GT_OQ);
+  // At zero length, n = 0 (d divided by infinity): no move, and λ, μ are kept below.
+  const __m256d inverse_length = _mm256_div_pd(
+      _mm256_set1_pd(1.0), _mm256_blendv_pd(_mm256_set1_pd(infinity), length, has_direction));
+  const __m256d nx = _mm256_mul_pd(dx, inverse_length), ny = _mm256_mul_pd(dy, inverse_length);
+  const __m256d lambda_i = lambda ? _mm256_loadu_pd(lambda) : _mm256_setzero_pd();
+  const __m256d mu_i = mu ? _mm256_loadu_pd(mu) : _mm256_setzero_pd();
+  const __m256d bs = _mm256_set1_pd(k.bs);
+  const __m256d stretch = _mm256_sub_pd(length, _mm256_set1_pd(k.rest));
+  const __m256d along = _mm256_mul_pd(
+      _mm256_sub_pd(_mm256_sub_pd(_mm256_mul_pd(_mm256_set1_pd(-k.ks2), stretch), lambda_i),
+                    _mm256_mul_pd(bs, _mm256_add_pd(_mm256_mul_pd(nx, mx), _mm256_mul_pd(ny, my)))),
+      _mm256_set1_pd(k.along));
+  const __m256d across = _mm256_mul_pd(
+      _mm256_sub_pd(_mm256_sub_pd(_mm256_setzero_pd(), mu_i),
+                    _mm256_mul_pd(bs, _mm256_sub_pd(_mm256_mul_pd(nx, my), _mm256_mul_pd(ny, mx)))),
+      _mm256_set1_pd(k.across));
+  if (lambda) {
+    _mm256_storeu_pd(lambda,
+                     _mm256_blendv_pd(lambda_i, _mm256_add_pd(lambda_i, along), has_direction));
+    _mm256_storeu_pd(mu, _mm256_blendv_pd(mu_i, _mm256_add_pd(mu_i, across), has_direction));
+  }
+  const __m256d cx = _mm256_sub_pd(_mm256_mul_pd(along, nx), _mm256_mul_pd(across, ny));
+  const __m256d cy = _mm256_add_pd(_mm256_mul_pd(along, ny), _mm256_mul_pd(across, nx));
+  const __m256d even = _mm256_unpacklo_pd(cx, cy), odd = _mm256_unpackhi_pd(cx, cy);
+  const __m128d move[4] = {_mm256_castpd256_pd128(even), _mm256_castpd256_pd128(odd),
+                           _mm256_extractf128_pd(even, 1), _mm256_extractf128_pd(odd, 1)};
+  const __m128d wp = _mm_set1_pd(k.wp), wq = _mm_set1_pd(k.wq);
+  for (int i = 0; i < 4; ++i) {
+    double* xp = x + 4L * c[i].p;
+    double* xq = x + 4L * c[i].q;
+    _mm_storeu_pd(xp, _mm_add_pd(_mm_loadu_pd(xp), _mm_mul_pd(wp, move[i])));
+    _mm_storeu_pd(xq, _mm_sub_pd(_mm_loadu_pd(xq), _mm_mul_pd(wq, move[i])));
   }
 }
 
@@ -228,7 +292,11 @@ class Xpbd final : public Integrator {
   void project(bool accumulate) {
     const std::size_t groups = group_start_.size() - 1;
     const auto range = [&](long begin, long end) {
-      if (accumulate)
+      if (avx2_ && accumulate)
+        project_fours<true>(begin, end);
+      else if (avx2_)
+        project_fours<false>(begin, end);
+      else if (accumulate)
         project_chunks<true>(begin, end);
       else
         project_chunks<false>(begin, end);
@@ -246,6 +314,26 @@ class Xpbd final : public Integrator {
         for_blocks(end - begin, [&](long b, long e) { range(begin + b, begin + e); });
       else
         range(begin, end);
+    }
+  }
+
+  // Projections [begin, end) of one colour four at a time with AVX2 (project_four), runs of one
+  // kind; what is left of a run, one at a time.
+  template <bool accumulate>
+  __attribute__((target("avx2"))) void project_fours(long begin, long end) {
+    double* x = state_.data();
+    for (long first = begin; first < end;) {
+      const int kind = constraints_[std::size_t(first)].kind;
+      long last = first + 1;
+      while (last < end && constraints_[std::size_t(last)].kind == kind)
+        ++last;
+      const Kind& k = kinds_[std::size_t(kind)];
+      long i = first;
+      for (; i + 4 <= last; i += 4)
+        project_four(x, constraints_.data() + i, k, accumulate ? lambda_.data() + i : nullptr,
+                     accumulate ? mu_.data() + i : nullptr);
+      project_range<accumulate>(i, last);
+      first = last;
     }
   }
 
@@ -329,8 +417,11 @@ class Xpbd final : public Integrator {
   Eigen::VectorXd inverse_mass_;                  // w_i = 1/m_i, 0 for pinned particles
   std::vector<Constraint> constraints_;           // in pass order: colour by colour
   std::vector<Kind> kinds_;                       // their coefficients
-  std::vector<long> group_start_;                 // colour c is [start[c], start[c + 1])
-  bool last_group_sequential_ = false;            // the last group is not a colour (see prepare)
+  // project_four where the processor has AVX2, else project_chunks; SPRINGLAB_XPBD_PORTABLE=1
+  // chooses the latter anywhere, for the test that both give the same bits (tests/xpbd.cpp).
+  bool avx2_ = __builtin_cpu_supports("avx2") && !std::getenv("SPRINGLAB_XPBD_PORTABLE");
+  std::vector<long> group_start_;       // colour c is [start[c], start[c + 1])
+  bool last_group_sequential_ = false;  // the last group is not a colour (see prepare)
   std::vector<double> lambda_;  // λ of each constraint in this substep, kg·m, in pass order
   std::vector<double> mu_;      // μ of each damper's sideways constraint, kg·m, in pass order
   // Rows 0–1: the particles' positions x during a substep's projections; rows 2–3: r at its start.
