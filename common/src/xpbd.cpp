@@ -51,11 +51,16 @@
 namespace springlab::detail {
 namespace {
 
-// One spring as a pass reads it: its ends and its kind, whose coefficients it shares with every
-// spring of the same k, b, ℓ0 and ends' masses (a fabric has a few kinds: three families, free or
-// pinned ends). A pass reads 12 bytes a spring.
-struct Constraint {
+// One spring as a pass reads it: its two ends (8 bytes). Its coefficients are its kind's, shared
+// with every spring of the same k, b, ℓ0 and ends' masses (a fabric has a few kinds: three
+// families, free or pinned ends); a pass goes over runs of springs of one kind.
+struct Ends {
   int p = 0, q = 0;
+};
+
+// Springs [begin, end) of the pass order, all of kind `kind` and of one group (see prepare).
+struct Run {
+  long begin = 0, end = 0;
   int kind = 0;
 };
 
@@ -111,7 +116,7 @@ __attribute__((target_clones("avx2", "default"))) void project_chunk(
 // into a vector each (a 4×4 transpose), projected together, and each end's move added back with
 // one 16-byte load and store. The four share no particle, so their writes never meet. `lambda`
 // and `mu`: the kept λ and μ of the four (accumulated), or null for a single pass.
-__attribute__((target("avx2"))) void project_four(double* x, const Constraint* c, const Kind& k,
+__attribute__((target("avx2"))) void project_four(double* x, const Ends* c, const Kind& k,
                                                   double* lambda, double* mu) {
   __m256d u[4];
   for (int i = 0; i < 4; ++i) {
@@ -223,7 +228,7 @@ class Xpbd final : public Integrator {
     Eigen::VectorXd w(n);
     for (long i = 0; i < n; ++i)
       w[i] = model.pinned[std::size_t(i)] ? 0.0 : 1.0 / model.mass[i];
-    const bool same = springs_ == &springs && springs.size() == constraints_.size() && s == s_ &&
+    const bool same = springs_ == &springs && springs.size() == ends_.size() && s == s_ &&
                       w.size() == inverse_mass_.size() && w == inverse_mass_;
     if (same) return;
     springs_ = &springs;
@@ -255,7 +260,11 @@ class Xpbd final : public Integrator {
       group_start_[c] += group_start_[c - 1];
     last_group_sequential_ = colours == 65;
     std::vector<long> next(group_start_.begin(), group_start_.end() - 1);
-    constraints_.resize(springs.size());
+    struct Placed {
+      Ends ends;
+      int kind = 0;
+    };
+    std::vector<Placed> order(springs.size());  // pass order
     kinds_.clear();
     std::map<std::array<double, 5>, int> kind_of;  // (k, b, ℓ0, w_p, w_q) → kind
     const double s2 = s * s;
@@ -275,32 +284,29 @@ class Xpbd final : public Integrator {
         kind.across = 1.0 / (kind.bs * sum + 1.0);
         kinds_.push_back(kind);
       }
-      Constraint& c = constraints_[std::size_t(next[std::size_t(colour[i])]++)];
-      c.p = spring.p;
-      c.q = spring.q;
-      c.kind = where->second;
+      order[std::size_t(next[std::size_t(colour[i])]++)] = {{spring.p, spring.q}, where->second};
     }
-    // Within a colour the order does not change the result: by kind, so that a chunk is one kind.
-    const std::size_t independent = group_start_.size() - 1 - (last_group_sequential_ ? 1 : 0);
+    // Within a colour the order does not change the result: by kind, so that runs are long.
+    const std::size_t groups = group_start_.size() - 1;
+    const std::size_t independent = groups - (last_group_sequential_ ? 1 : 0);
     for (std::size_t g = 0; g < independent; ++g)
-      std::stable_sort(constraints_.begin() + group_start_[g],
-                       constraints_.begin() + group_start_[g + 1],
-                       [](const Constraint& a, const Constraint& b) { return a.kind < b.kind; });
+      std::stable_sort(order.begin() + group_start_[g], order.begin() + group_start_[g + 1],
+                       [](const Placed& a, const Placed& b) { return a.kind < b.kind; });
+    ends_.resize(order.size());
+    runs_.clear();
+    for (std::size_t g = 0; g < groups; ++g)
+      for (long i = group_start_[g]; i < group_start_[g + 1]; ++i) {
+        const Placed& placed = order[std::size_t(i)];
+        ends_[std::size_t(i)] = placed.ends;
+        if (i == group_start_[g] || placed.kind != runs_.back().kind)
+          runs_.push_back({i, i, placed.kind});
+        runs_.back().end = i + 1;
+      }
   }
 
   // One Gauss–Seidel pass, colour by colour (the file's comment, step 2).
   void project(bool accumulate) {
     const std::size_t groups = group_start_.size() - 1;
-    const auto range = [&](long begin, long end) {
-      if (avx2_ && accumulate)
-        project_fours<true>(begin, end);
-      else if (avx2_)
-        project_fours<false>(begin, end);
-      else if (accumulate)
-        project_chunks<true>(begin, end);
-      else
-        project_chunks<false>(begin, end);
-    };
     for (std::size_t g = 0; g < groups; ++g) {
       const long begin = group_start_[g], end = group_start_[g + 1];
       // Threads only for colours of many springs (grids from about 500×500): each colour is a
@@ -308,60 +314,65 @@ class Xpbd final : public Integrator {
       // threads than projecting (two threads ran a 200×200 fabric 5 times slower than one on a
       // busy machine).
       const bool independent = !(g + 1 == groups && last_group_sequential_);
-      if (!independent)
-        accumulate ? project_range<true>(begin, end) : project_range<false>(begin, end);
-      else if (end - begin >= 8 * parallel_items)
-        for_blocks(end - begin, [&](long b, long e) { range(begin + b, begin + e); });
+      const auto span = [&](long b, long e) { project_span(b, e, independent, accumulate); };
+      if (independent && end - begin >= 8 * parallel_items)
+        for_blocks(end - begin, [&](long b, long e) { span(begin + b, begin + e); });
       else
-        range(begin, end);
+        span(begin, end);
     }
   }
 
-  // Projections [begin, end) of one colour four at a time with AVX2 (project_four), runs of one
-  // kind; what is left of a run, one at a time.
+  // Projections [begin, end) of one group, run by run: four at a time (AVX2) or a chunk at a
+  // time when they share no particle (`independent`), else one at a time.
+  void project_span(long begin, long end, bool independent, bool accumulate) {
+    auto run = std::partition_point(runs_.begin(), runs_.end(),
+                                    [&](const Run& r) { return r.end <= begin; });
+    for (; run != runs_.end() && run->begin < end; ++run) {
+      const long b = std::max(begin, run->begin), e = std::min(end, run->end);
+      const Kind& k = kinds_[std::size_t(run->kind)];
+      if (!independent)
+        accumulate ? project_range<true>(b, e, k) : project_range<false>(b, e, k);
+      else if (avx2_)
+        accumulate ? project_fours<true>(b, e, k) : project_fours<false>(b, e, k);
+      else
+        accumulate ? project_chunks<true>(b, e, k) : project_chunks<false>(b, e, k);
+    }
+  }
+
+  // Projections [begin, end) of one colour and kind, four at a time with AVX2 (project_four);
+  // the last few one at a time.
   template <bool accumulate>
-  __attribute__((target("avx2"))) void project_fours(long begin, long end) {
+  __attribute__((target("avx2"))) void project_fours(long begin, long end, const Kind& k) {
     double* x = state_.data();
-    for (long first = begin; first < end;) {
-      const int kind = constraints_[std::size_t(first)].kind;
-      long last = first + 1;
-      while (last < end && constraints_[std::size_t(last)].kind == kind)
-        ++last;
-      const Kind& k = kinds_[std::size_t(kind)];
-      long i = first;
-      for (; i + 4 <= last; i += 4)
-        project_four(x, constraints_.data() + i, k, accumulate ? lambda_.data() + i : nullptr,
-                     accumulate ? mu_.data() + i : nullptr);
-      project_range<accumulate>(i, last);
-      first = last;
-    }
+    long i = begin;
+    for (; i + 4 <= end; i += 4)
+      project_four(x, ends_.data() + i, k, accumulate ? lambda_.data() + i : nullptr,
+                   accumulate ? mu_.data() + i : nullptr);
+    project_range<accumulate>(i, end, k);
   }
 
-  // Projections [begin, end) of one colour, which share no particle: gathered, projected and
-  // scattered a chunk at a time, each chunk of one kind (the file's comment).
+  // Projections [begin, end) of one colour and kind, which share no particle: gathered,
+  // projected and scattered a chunk at a time (the file's comment).
   template <bool accumulate>
-  void project_chunks(long begin, long end) {
+  void project_chunks(long begin, long end, const Kind& c) {
     double* x = state_.data();  // particle i: x at 4i, 4i + 1, its substep start at 4i + 2, 4i + 3
     Chunk ch;
-    for (long first = begin; first < end;) {
-      const Constraint* constraints = constraints_.data() + first;
-      const int kind = constraints[0].kind;
-      int count = 0;
-      for (; count < chunk_size && first + count < end && constraints[count].kind == kind;
-           ++count) {
-        const long p = 4L * constraints[count].p, q = 4L * constraints[count].q;
-        ch.dx[count] = x[p] - x[q];
-        ch.dy[count] = x[p + 1] - x[q + 1];
-        ch.mx[count] = (x[p] - x[p + 2]) - (x[q] - x[q + 2]);
-        ch.my[count] = (x[p + 1] - x[p + 3]) - (x[q + 1] - x[q + 3]);
+    for (long first = begin; first < end; first += chunk_size) {
+      const Ends* ends = ends_.data() + first;
+      const int count = int(std::min<long>(chunk_size, end - first));
+      for (int j = 0; j < count; ++j) {
+        const long p = 4L * ends[j].p, q = 4L * ends[j].q;
+        ch.dx[j] = x[p] - x[q];
+        ch.dy[j] = x[p + 1] - x[q + 1];
+        ch.mx[j] = (x[p] - x[p + 2]) - (x[q] - x[q + 2]);
+        ch.my[j] = (x[p + 1] - x[p + 3]) - (x[q + 1] - x[q + 3]);
       }
-      const Kind& c = kinds_[std::size_t(kind)];
       project_chunk(count, c, ch.dx, ch.dy, ch.mx, ch.my,
                     accumulate ? lambda_.data() + first : zeros,
                     accumulate ? mu_.data() + first : zeros, ch.along, ch.across, ch.cx, ch.cy);
       const double wp = c.wp, wq = c.wq;
       for (int j = 0; j < count; ++j) {
-        const long p = 4L * constraints[j].p, q = 4L * constraints[j].q;
+        const long p = 4L * ends[j].p, q = 4L * ends[j].q;
         x[p] += wp * ch.cx[j];
         x[p + 1] += wp * ch.cy[j];
         x[q] -= wq * ch.cx[j];
@@ -371,23 +382,19 @@ class Xpbd final : public Integrator {
           mu_[std::size_t(first + j)] += ch.across[j];
         }
       }
-      first += count;
     }
   }
 
-  // Projections [begin, end) of the pass order one at a time: the last group, whose springs may
-  // share particles. `accumulate`: λ and μ are kept (several passes).
+  // Projections [begin, end) of the pass order one at a time, all of kind c: the group whose
+  // springs may share particles, and what is left of a run after project_fours.
+  // `accumulate`: λ and μ are kept (several passes).
   template <bool accumulate>
-  void project_range(long begin, long end) {
+  void project_range(long begin, long end, const Kind& c) {
     double* x = state_.data();  // as in project_chunks
-    const double* w = inverse_mass_.data();
-    const Kind* kinds = kinds_.data();
     double* lambda = lambda_.data();
     double* mu = mu_.data();
     for (long i = begin; i < end; ++i) {
-      const Constraint& constraint = constraints_[std::size_t(i)];
-      const Kind& c = kinds[constraint.kind];
-      const long p = 4L * constraint.p, q = 4L * constraint.q;
+      const long p = 4L * ends_[std::size_t(i)].p, q = 4L * ends_[std::size_t(i)].q;
       const double dx = x[p] - x[q], dy = x[p + 1] - x[q + 1];
       const double length_squared = dx * dx + dy * dy;
       if (length_squared == 0.0) continue;  // no direction: no force, as (1.1) says
@@ -402,11 +409,10 @@ class Xpbd final : public Integrator {
       const double across = (-mu_i - c.bs * (nx * my - ny * mx)) * c.across;
       if (accumulate) lambda[i] += along, mu[i] += across;
       const double cx = along * nx - across * ny, cy = along * ny + across * nx;
-      const double wp = w[constraint.p], wq = w[constraint.q];
-      x[p] += wp * cx;
-      x[p + 1] += wp * cy;
-      x[q] -= wq * cx;
-      x[q + 1] -= wq * cy;
+      x[p] += c.wp * cx;
+      x[p + 1] += c.wp * cy;
+      x[q] -= c.wq * cx;
+      x[q + 1] -= c.wq * cy;
     }
   }
 
@@ -415,7 +421,8 @@ class Xpbd final : public Integrator {
   const std::vector<Spring>* springs_ = nullptr;  // the list prepare() last saw
   double s_ = 0.0;                                // the substep it prepared for, s
   Eigen::VectorXd inverse_mass_;                  // w_i = 1/m_i, 0 for pinned particles
-  std::vector<Constraint> constraints_;           // in pass order: colour by colour
+  std::vector<Ends> ends_;                        // the springs in pass order: colour by colour
+  std::vector<Run> runs_;                         // ends_ cut into runs of one kind
   std::vector<Kind> kinds_;                       // their coefficients
   // project_four where the processor has AVX2, else project_chunks; SPRINGLAB_XPBD_PORTABLE=1
   // chooses the latter anywhere, for the test that both give the same bits (tests/xpbd.cpp).
