@@ -26,13 +26,15 @@
 //
 // The order of a pass: springs are coloured so that no two of a colour share a particle (greedy,
 // in list order: each takes the first colour free at both ends; about 20 on a fabric), and a pass
-// goes colour by colour, each colour's springs in list order. Within a colour the projections are
-// independent, so they are computed four at a time: a chunk of a colour is gathered into arrays,
-// projected by one loop GCC vectorises (an AVX2 clone beside the SSE2 one, no fused multiply-adds:
-// the same bits as one at a time), and its moves scattered back. On large scenes (colours of 131072
-// springs or more) the chunks are also split over threads (parallel.hpp) with the same result.
-// A projection's denominators depend only on s, k, b and the ends' masses: they are computed once
-// for each kind of spring, not per projection, and a colour's springs are sorted by kind.
+// goes colour by colour. Within a colour the order does not change the result, so a colour's
+// springs are sorted by kind (below) and the projections, independent, are computed four at a
+// time: with AVX2, each end's position and substep start in one load and four springs turned into
+// vectors by a transpose (project_four); elsewhere, a chunk gathered into arrays, projected by one
+// loop the compiler vectorises and scattered back (project_chunk). Both are the same operations in
+// the same order as one at a time, without fused multiply-adds: the same bits. On large scenes
+// (colours of 131072 springs or more) a colour is also split over threads (parallel.hpp), with
+// the same result. A projection's denominators depend only on s, k, b and the ends' masses: they
+// are computed once for each kind of spring, not per projection.
 #include "integrators.hpp"
 #include "springlab/parallel.hpp"
 
@@ -43,10 +45,10 @@
 #include <cstdint>
 #include <cstdlib>
 #include <limits>
-
-#include <immintrin.h>
 #include <map>
 #include <vector>
+
+#include <immintrin.h>
 
 namespace springlab::detail {
 namespace {
