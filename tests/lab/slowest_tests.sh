@@ -14,3 +14,9 @@ slowest_tests "$scratch/suite-junit.xml" >"$scratch/out"
 cat "$scratch/out"
 [ "$(grep -c ' s  suite.case ' "$scratch/out")" -eq 5 ]
 grep -q '^ *3000.5 s  suite.case 3000, ' "$scratch/out"
+# The batch's table: printed from the test's output, and nothing (not a failure) without it.
+source <(sed -n '/^batch_phases() {/,/^}/p' "$lab")
+[ -z "$(batch_phases "$scratch/suite-junit.xml")" ]
+printf '<system-out>grader.batch: 2 submissions\ngrader.batch:  compile  4 in 8.0 s &amp; so on\n' \
+  >"$scratch/batch.xml"
+[ "$(batch_phases "$scratch/batch.xml" | tail -n 1)" = "    grader.batch:  compile  4 in 8.0 s & so on" ]

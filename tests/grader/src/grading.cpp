@@ -238,6 +238,22 @@ class Grader::Pipeline {
  private:
   // ok, the linker's messages, and the grader's own fault ("" when none).
   using Then = std::function<void(bool ok, const std::string& messages, const std::string& fault)>;
+
+  // Runs c in the pool, its time counted under `phase` (Grader::phase_times) unless measuring
+  // the reference.
+  void add(std::string phase, Command c, std::function<void(Outcome)> done) {
+    pool_.add(std::move(c), [this, phase = std::move(phase), done = std::move(done)](Outcome o) {
+      if (!generous_) {
+        PhaseTime& t = g_.phase_times_[phase];
+        ++t.count;
+        t.wall_seconds += o.wall_seconds;
+      }
+      done(std::move(o));
+    });
+  }
+  static std::string of(const std::string& phase, bool sanitized) {
+    return sanitized ? phase + " (sanitized)" : phase;
+  }
   // ok, the compiler's messages, what the code may not include and the grader's own fault ("" when
   // nothing).
   using Compiled =
@@ -316,7 +332,7 @@ class Grader::Pipeline {
                                    (b->copy / source).string(), std::string("-o"), output.string()})
       argv.push_back(arg);
     Command c = build_command(*b, std::move(argv), b->folder);
-    pool_.add(std::move(c), [this, b, index, output, unchecked](Outcome o) mutable {
+    add("preprocess", std::move(c), [this, b, index, output, unchecked](Outcome o) mutable {
       // A file that does not preprocess does not compile either (and what was not checked is
       // never compiled): the preprocessor's messages say why.
       if (!o.exited || o.exit_code != 0) {
@@ -420,34 +436,35 @@ class Grader::Pipeline {
       argv.push_back(arg);
     // In the folder above the copy, so that the objects name their files ./tasks/... (see above).
     Command c = build_command(*b, std::move(argv), top);
-    pool_.add(std::move(c), [this, b, &v, source, key, path, done](Outcome outcome) {
-      Object o;
-      o.path = path;
-      o.copy = b->copy;
-      o.ok = outcome.exited && outcome.exit_code == 0;
-      o.messages = stop_text(outcome.stopped, outcome.output) +
-                   student_paths(outcome.output, b->copy, kit_.root);
-      if (!outcome.start_error.empty()) o.messages += outcome.start_error + "\n";
-      if (!o.ok) o.fault = fault_of(outcome, "the compiler");
-      const fs::path copy = fs::weakly_canonical(b->copy);
-      for (const fs::path& file : read_dependencies(path.string() + ".d")) {
-        const fs::path inside = fs::weakly_canonical(file).lexically_relative(copy);
-        if (!inside.empty() && *inside.begin() != "..") o.read.push_back(inside.string());
-        const std::string problem = include_problem(file, b->copy, kit_.pch, kit_);
-        if (o.problem.empty() && !problem.empty()) o.problem = source + ": " + problem;
-      }
-      // Never the compiler's words about a file the submission may not read: they quote it.
-      if (quotes_foreign_file(outcome.output, b->copy))
-        o.messages =
-            "(the compiler's messages are not shown: they quote a file that is not "
-            "your submission's)\n";
-      if (o.fault.empty()) objects_[key].push_back(o);
-      const std::vector<std::function<void()>> waiting = std::move(compiling_[key]);
-      compiling_.erase(key);
-      done(o);
-      for (const auto& again : waiting)
-        again();
-    });
+    add(of("compile", &v == &kit_.sanitized), std::move(c),
+        [this, b, &v, source, key, path, done](Outcome outcome) {
+          Object o;
+          o.path = path;
+          o.copy = b->copy;
+          o.ok = outcome.exited && outcome.exit_code == 0;
+          o.messages = stop_text(outcome.stopped, outcome.output) +
+                       student_paths(outcome.output, b->copy, kit_.root);
+          if (!outcome.start_error.empty()) o.messages += outcome.start_error + "\n";
+          if (!o.ok) o.fault = fault_of(outcome, "the compiler");
+          const fs::path copy = fs::weakly_canonical(b->copy);
+          for (const fs::path& file : read_dependencies(path.string() + ".d")) {
+            const fs::path inside = fs::weakly_canonical(file).lexically_relative(copy);
+            if (!inside.empty() && *inside.begin() != "..") o.read.push_back(inside.string());
+            const std::string problem = include_problem(file, b->copy, kit_.pch, kit_);
+            if (o.problem.empty() && !problem.empty()) o.problem = source + ": " + problem;
+          }
+          // Never the compiler's words about a file the submission may not read: they quote it.
+          if (quotes_foreign_file(outcome.output, b->copy))
+            o.messages =
+                "(the compiler's messages are not shown: they quote a file that is not "
+                "your submission's)\n";
+          if (o.fault.empty()) objects_[key].push_back(o);
+          const std::vector<std::function<void()>> waiting = std::move(compiling_[key]);
+          compiling_.erase(key);
+          done(o);
+          for (const auto& again : waiting)
+            again();
+        });
   }
 
   // True when the compiler's messages name a file outside the copy, the kit's headers and the
@@ -471,7 +488,7 @@ class Grader::Pipeline {
       argv.push_back(b->object(source, kit_.plain).string());
     Command c = build_command(*b, std::move(argv), b->folder);
     c.limits.output_kept = c.limits.output_limit;
-    pool_.add(std::move(c), [this, b](Outcome o) {
+    add("nm", std::move(c), [this, b](Outcome o) {
       if (!o.exited || o.exit_code != 0) {
         const std::string fault = fault_of(o, "nm");
         return fault_all(b, fault.empty() ? "nm could not read the objects: " +
@@ -507,7 +524,7 @@ class Grader::Pipeline {
     for (const fs::path& part : kit_.library_parts.at(b->task))
       argv.push_back(part.string());
     Command c = build_command(*b, std::move(argv), b->folder);
-    pool_.add(std::move(c), [this, b, then](Outcome o) {
+    add(of("link", &v == &kit_.sanitized), std::move(c), [this, b, then](Outcome o) {
       const bool ok = o.exited && o.exit_code == 0;
       then(ok, first_lines(student_paths(o.output, b->copy, kit_.root), 30),
            ok ? "" : fault_of(o, "the linker"));
@@ -579,7 +596,7 @@ class Grader::Pipeline {
     Command c = test_command(*b->result.tests[std::size_t(index)].test, kit_.plain, *b);
     const std::string secret = c.secret;
     const Limits limits = c.limits;
-    pool_.add(std::move(c), [this, b, index, secret, limits](Outcome o) {
+    add("test", std::move(c), [this, b, index, secret, limits](Outcome o) {
       TestResult& t = b->result.tests[std::size_t(index)];
       if (const std::string fault = fault_of_test(o); !fault.empty())
         return test_fault(b, t, fault);
@@ -632,7 +649,7 @@ class Grader::Pipeline {
     Command c = test_command(*plain.test, kit_.sanitized, *b);
     const std::string secret = c.secret;
     const Limits limits = c.limits;
-    pool_.add(std::move(c), [this, b, index, secret, limits, crashed](Outcome o) {
+    add("test (sanitized)", std::move(c), [this, b, index, secret, limits, crashed](Outcome o) {
       TestResult& t = b->result.tests[std::size_t(index)];
       if (const std::string fault = fault_of_test(o); !fault.empty())
         return test_fault(b, t, fault);

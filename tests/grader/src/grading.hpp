@@ -76,6 +76,14 @@ struct ReferenceTime {
 /// Each test's time by name, per variant ("plain", "sanitized").
 using Calibration = std::map<std::string, std::map<std::string, ReferenceTime>>;
 
+/// The processes of one kind a run started (preprocess, compile, nm, link, test, each plain or
+/// sanitized): how many, and their wall time summed. Where a batch's time goes.
+struct PhaseTime {
+  long count = 0;
+  double wall_seconds = 0.0;
+};
+using PhaseTimes = std::map<std::string, PhaseTime>;
+
 class Grader {
  public:
   /// Every command on submission code runs confined by `isolation` (isolation.hpp).
@@ -99,6 +107,9 @@ class Grader {
   /// How the time limit is set, in words.
   std::string time_limit_text() const;
 
+  /// The processes grade() started so far, by kind (not calibrate()'s).
+  const PhaseTimes& phase_times() const { return phase_times_; }
+
  private:
   struct TaskBuild;
   class Pipeline;
@@ -107,6 +118,7 @@ class Grader {
   Settings settings_;
   const Isolation& isolation_;
   Calibration calibration_;
+  mutable PhaseTimes phase_times_;  // counted by the pipeline as each process ends
 
   Limits test_limits(const TestInfo& test, const Variant& variant) const;
   std::vector<SubmissionResult> run(

@@ -24,6 +24,7 @@
 #include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <iostream>
@@ -33,6 +34,19 @@
 using namespace springlab::grader;
 
 namespace {
+
+// Where a run's time went, for whoever wonders why a class takes as long as it does (issue 27):
+// the processes it started, by kind, and their wall time summed (`--jobs` of them run at once,
+// so the sums add up to about that many times the run's own time).
+void print_phase_times(const PhaseTimes& phases) {
+  std::cerr << "springlab-grade: the processes of this run, by kind (wall time, summed):\n";
+  for (const auto& [phase, t] : phases) {
+    char line[160];
+    std::snprintf(line, sizeof line, "  %-18s %6ld in %8.1f s (%.2f s each)\n", phase.c_str(),
+                  t.count, t.wall_seconds, t.wall_seconds / double(t.count));
+    std::cerr << line;
+  }
+}
 
 constexpr const char* marker = ".springlab-grade";  // marks a folder this program may empty
 
@@ -367,6 +381,7 @@ int grade(Options options) {
               << points_text(max) << " points (graded before on the same files)" << std::endl;
   }
   grader.grade(to_grade, task_done, submission_done);
+  if (!options.student && !grader.phase_times().empty()) print_phase_times(grader.phase_times());
   try {
     out.write_gradebook(isolation.namespaces() ? "" : isolation.describe());
   } catch (const std::runtime_error& error) {
