@@ -46,6 +46,7 @@
 #include <cstdlib>
 #include <limits>
 #include <map>
+#include <string_view>
 #include <vector>
 
 #include <immintrin.h>
@@ -151,7 +152,7 @@ __attribute__((target("avx2"))) void project_four(double* x, const Ends* c, cons
                     _mm256_mul_pd(bs, _mm256_add_pd(_mm256_mul_pd(nx, mx), _mm256_mul_pd(ny, my)))),
       _mm256_set1_pd(k.along));
   const __m256d across = _mm256_mul_pd(
-      _mm256_sub_pd(_mm256_sub_pd(_mm256_setzero_pd(), mu_i),
+      _mm256_sub_pd(_mm256_xor_pd(mu_i, _mm256_set1_pd(-0.0)),  // −μ, as the scalar −mu_i
                     _mm256_mul_pd(bs, _mm256_sub_pd(_mm256_mul_pd(nx, my), _mm256_mul_pd(ny, mx)))),
       _mm256_set1_pd(k.across));
   if (lambda) {
@@ -334,10 +335,12 @@ class Xpbd final : public Integrator {
       const Kind& k = kinds_[std::size_t(run->kind)];
       if (!independent)
         accumulate ? project_range<true>(b, e, k) : project_range<false>(b, e, k);
-      else if (avx2_)
+      else if (path_ == Path::four)
         accumulate ? project_fours<true>(b, e, k) : project_fours<false>(b, e, k);
-      else
+      else if (path_ == Path::chunks)
         accumulate ? project_chunks<true>(b, e, k) : project_chunks<false>(b, e, k);
+      else
+        accumulate ? project_range<true>(b, e, k) : project_range<false>(b, e, k);
     }
   }
 
@@ -426,9 +429,18 @@ class Xpbd final : public Integrator {
   std::vector<Ends> ends_;                        // the springs in pass order: colour by colour
   std::vector<Run> runs_;                         // ends_ cut into runs of one kind
   std::vector<Kind> kinds_;                       // their coefficients
-  // project_four where the processor has AVX2, else project_chunks; SPRINGLAB_XPBD_PORTABLE=1
-  // chooses the latter anywhere, for the test that both give the same bits (tests/xpbd.cpp).
-  bool avx2_ = __builtin_cpu_supports("avx2") && !std::getenv("SPRINGLAB_XPBD_PORTABLE");
+  // How a colour is projected: four at a time where the processor has AVX2, else a chunk at a
+  // time; SPRINGLAB_XPBD_PATH=chunks or =one chooses another, for the test that all three give
+  // the same bits (tests/xpbd.cpp).
+  enum class Path { four, chunks, one };
+  Path path_ = chosen_path();
+  static Path chosen_path() {
+    const char* asked = std::getenv("SPRINGLAB_XPBD_PATH");
+    const std::string_view name = asked ? asked : "";
+    if (name == "one") return Path::one;
+    if (name == "chunks" || !__builtin_cpu_supports("avx2")) return Path::chunks;
+    return Path::four;
+  }
   std::vector<long> group_start_;       // colour c is [start[c], start[c + 1])
   bool last_group_sequential_ = false;  // the last group is not a colour (see prepare)
   std::vector<double> lambda_;  // λ of each constraint in this substep, kg·m, in pass order

@@ -42,7 +42,7 @@ void print_phase_times(const PhaseTimes& phases) {
   std::cerr << "springlab-grade: the processes of this run, by kind (wall time, summed):\n";
   for (const auto& [phase, t] : phases) {
     char line[160];
-    std::snprintf(line, sizeof line, "  %-18s %6ld in %8.1f s (%.2f s each)\n", phase.c_str(),
+    std::snprintf(line, sizeof line, "  %-20s %6ld in %8.1f s (%.2f s each)\n", phase.c_str(),
                   t.count, t.wall_seconds, t.wall_seconds / double(t.count));
     std::cerr << line;
   }
