@@ -317,7 +317,9 @@ class Xpbd final : public Integrator {
       // threads than projecting (two threads ran a 200×200 fabric 5 times slower than one on a
       // busy machine).
       const bool independent = !(g + 1 == groups && last_group_sequential_);
-      const auto span = [&](long b, long e) { project_span(b, e, independent, accumulate); };
+      const auto span = [&](long b, long e) {
+        accumulate ? project_span<true>(b, e, independent) : project_span<false>(b, e, independent);
+      };
       if (independent && end - begin >= 8 * parallel_items)
         for_blocks(end - begin, [&](long b, long e) { span(begin + b, begin + e); });
       else
@@ -327,27 +329,26 @@ class Xpbd final : public Integrator {
 
   // Projections [begin, end) of one group, run by run: four at a time (AVX2) or a chunk at a
   // time when they share no particle (`independent`), else one at a time.
-  void project_span(long begin, long end, bool independent, bool accumulate) {
+  template <bool accumulate>
+  void project_span(long begin, long end, bool independent) {
     auto run = std::partition_point(runs_.begin(), runs_.end(),
                                     [&](const Run& r) { return r.end <= begin; });
     for (; run != runs_.end() && run->begin < end; ++run) {
       const long b = std::max(begin, run->begin), e = std::min(end, run->end);
       const Kind& k = kinds_[std::size_t(run->kind)];
-      if (!independent)
-        accumulate ? project_range<true>(b, e, k) : project_range<false>(b, e, k);
+      if (!independent || path_ == Path::one)
+        project_range<accumulate>(b, e, k);
       else if (path_ == Path::four)
-        accumulate ? project_fours<true>(b, e, k) : project_fours<false>(b, e, k);
-      else if (path_ == Path::chunks)
-        accumulate ? project_chunks<true>(b, e, k) : project_chunks<false>(b, e, k);
+        project_fours<accumulate>(b, e, k);
       else
-        accumulate ? project_range<true>(b, e, k) : project_range<false>(b, e, k);
+        project_chunks<accumulate>(b, e, k);
     }
   }
 
   // Projections [begin, end) of one colour and kind, four at a time with AVX2 (project_four);
   // the last few one at a time.
   template <bool accumulate>
-  __attribute__((target("avx2"))) void project_fours(long begin, long end, const Kind& k) {
+  void project_fours(long begin, long end, const Kind& k) {
     double* x = state_.data();
     long i = begin;
     for (; i + 4 <= end; i += 4)

@@ -100,16 +100,6 @@ std::string parameter_list() {
   return out.str();
 }
 
-// "a, b or c": every integrator --integrator takes, from the list that makes them (it once named
-// all but XPBD).
-std::string integrator_list() {
-  const std::vector<std::string> names = integrator_names();
-  std::string text;
-  for (std::size_t i = 0; i < names.size(); ++i)
-    text += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-  return text;
-}
-
 // The most memory this process has had resident so far, MiB.
 long peak_resident_mib() {
   rusage usage{};
@@ -466,7 +456,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--impl", options.impl, "whose code runs: the reference or the student's")
       ->capture_default_str();
-  app.add_option("--integrator", options.integrator, integrator_list() + " (default: the scene's)");
+  app.add_option("--integrator", options.integrator,
+                 integrator_choices() + " (default: the scene's)");
   app.add_option("--dt", options.dt, "the step h in seconds, the scene's `step` (default 0.01)");
   app.add_option("--duration", options.duration, "simulated seconds, the scene's `duration`");
   app.add_option("--set", options.sets, "KEY=VALUE: change a scene parameter, e.g. structural.k=40")
