@@ -18,7 +18,7 @@ rm -rf "$scratch"
 mkdir -p "$scratch/class" "$scratch/disk" "$scratch/full"
 # Three different copies among the 27 (equal copies share one build): builds still run side by
 # side on the small work disk while the faults happen, with 3 builds instead of 27 (issue 27:
-# the test took 129 s with 27 different copies, 41 s with three, 33 s with one; idle).
+# the test took 129 s with 27 different copies, 41 s with three, 33 s with one, each run alone).
 for i in $(seq -w 1 27); do
   cp -r "$kit/solutions" "$scratch/class/student$i"
   echo "// copy $((10#$i % 3))" >>"$scratch/class/student$i/task1_two_masses/spring_damper.cpp"
