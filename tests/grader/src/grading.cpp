@@ -914,6 +914,9 @@ void Grader::calibrate(const fs::path& cache,
   const Settings saved = settings_;
   settings_.tasks = missing;
   settings_.hidden = true;  // one measurement serves a student's check and an instructor's grading
+  // Every test, plainly and sanitized, whatever this run's mode: measured under --first-failure
+  // (plainly, to the first failure) the cache would give every sanitized run the floor's limit.
+  settings_.first_failure = false;
   settings_.work = saved.work / "reference";
   Submission reference = find_submission(kit_.solutions, kit_);
   reference.name = "reference";

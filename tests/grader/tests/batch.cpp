@@ -1,11 +1,12 @@
 // The grader's proof, in one batch as CI runs it (label grader): the starter code scores nothing
-// and says what to write, the solutions score everything, every mutant (tests/mutants/*.patch)
-// loses points in its own task and in no other, by failing a public test, and every hostile or
-// broken submission (tests/grader/hostile/*/, see expect.toml there) gets the score and the
-// feedback it must; the submissions and the kit's sources on disk are unchanged afterwards, and
-// no report grows large. When the kit has hidden tests (tests/hidden/), they are graded too,
-// reported as hidden, and each mutant in tests/hidden/mutants/ passes every public test of its
-// task and fails a hidden one: the reason those tests exist.
+// and says what to write, the solutions score everything, every mutant (tests/mutants/*.patch,
+// graded apart by the [mutants] case at the end) loses points in its own task and in no other,
+// by failing a public test, and every hostile or broken submission (tests/grader/hostile/*/, see
+// expect.toml there) gets the score and the feedback it must; the submissions and the kit's sources
+// on disk are unchanged afterwards, and no report grows large. When the kit has hidden tests
+// (tests/hidden/), they are graded too, reported as hidden, and each mutant in
+// tests/hidden/mutants/ passes every public test of its task and fails a hidden one: the reason
+// those tests exist.
 #include "process.hpp"
 #include "reports.hpp"
 
@@ -68,7 +69,7 @@ std::string snapshot(const fs::path& folder) {
 }
 
 // Runs a trusted program (the grader, patch) and returns its exit status and output.
-std::pair<int, std::string> run(std::vector<std::string> argv) {
+std::pair<int, std::string> run(std::vector<std::string> argv, const fs::path& folder = batch) {
   ProcessPool pool(1);
   Command c;
   c.argv = std::move(argv);
@@ -76,7 +77,7 @@ std::pair<int, std::string> run(std::vector<std::string> argv) {
   // A value of the grader's own environment that no test process may ever see (the
   // read-grader-environment case looks for it).
   c.env.push_back("SPRINGLAB_BATCH_SECRET=batch-secret-7f1c");
-  c.directory = batch.string();
+  c.directory = folder.string();
   c.limits.wall_seconds = c.limits.cpu_seconds = 3600;
   c.limits.address_space_mb = 0;
   c.limits.file_size_mb = 4096;
@@ -175,7 +176,7 @@ Expectation hostile(const fs::path& folder) {
 }
 
 // A mutant: the solutions with one patch applied; its own task loses points, no other does.
-Expectation mutant(const fs::path& patch, CaughtBy caught_by) {
+Expectation mutant(const fs::path& patch, CaughtBy caught_by, const fs::path& into = submissions) {
   const std::string text = read(patch);
   std::smatch m;
   REQUIRE(std::regex_search(text, m, std::regex(R"(\n\+\+\+ b/(task\d)[^/]*/)")));
@@ -194,7 +195,7 @@ Expectation mutant(const fs::path& patch, CaughtBy caught_by) {
       patch.filename().string() << " needs a line 'Expect: WORDS' in its header: words of the "
                                    "first failure that name the mistake (tests/mutants/README.md)");
   CHECK_FALSE(e.first_failure.empty());
-  const fs::path target = submissions / e.name;
+  const fs::path target = into / e.name;
   fs::copy(kit / "solutions", target, fs::copy_options::recursive);
   const auto [status, output] = run({SPRINGLAB_PATCH, "--fuzz=0", "--silent", "-p1", "-d",
                                      target.string(), "-i", patch.string()});
@@ -252,7 +253,7 @@ std::string first_failure(const std::string& task_feedback) {
 }  // namespace
 
 TEST_CASE(
-    "One batch grades the starter code, the solutions, the mutants and the hostile "
+    "One batch grades the starter code, the solutions, the hidden tests' mutants and the hostile "
     "submissions as each must be graded",
     "[batch]") {
   fs::remove_all(batch);
@@ -262,9 +263,7 @@ TEST_CASE(
   expected.push_back(all("starter", "the starter code", Points::none));
   fs::copy(kit / "solutions", submissions / "solutions", fs::copy_options::recursive);
   expected.push_back(all("solutions", "the solutions", Points::full));
-  for (const auto& entry : fs::directory_iterator(kit / "tests" / "mutants"))
-    if (entry.path().extension() == ".patch")
-      expected.push_back(mutant(entry.path(), CaughtBy::public_tests));
+  // The public tests' mutants (tests/mutants/) are graded apart, by the [mutants] case below.
   if (fs::is_directory(hidden_tests / "mutants"))
     for (const auto& entry : fs::directory_iterator(hidden_tests / "mutants"))
       if (entry.path().extension() == ".patch")
@@ -398,4 +397,133 @@ TEST_CASE(
       INFO(entry.path());
       CHECK(entry.file_size() < (1u << 20));
     }
+}
+
+// The mutants of tests/mutants/, each graded in its own task only, that task's tests in order and
+// stopped at the first failure (springlab-grade --first-failure, as .ci/mutants grades the
+// generated ones); a mutant that passes every test plainly (a use after scope that only
+// AddressSanitizer sees) is graded again in its task through the whole pipeline, sanitizers
+// included. Until issue 27 the [batch] case graded every mutant as a whole submission, five
+// tasks through the whole pipeline: 43 of its 101 submissions and most of its sanitized runs.
+// What it proved is proved here from less: the mutant's task loses points by a public test whose
+// feedback, the first failure, says the words its header expects. That no other task loses any
+// follows from the patch: it changes files of its own task's folder only (checked), a task is
+// built from its own folder alone, and the other folders are the solutions' bytes, which the
+// [batch] case grades with full points. No longer run: the tests a mutant passes plainly, again
+// under the sanitizers (the solutions and the hostile submissions still take that path).
+TEST_CASE("Each mutant loses points in its own task, first by a public test that names the mistake",
+          "[mutants]") {
+  const fs::path folder = batch.parent_path() / "batch-mutants";
+  const fs::path into = folder / "submissions";
+  fs::remove_all(folder);
+  fs::create_directories(into);
+  std::map<int, std::vector<Expectation>> by_task;
+  std::map<std::string, std::string> before;
+  for (const auto& entry : fs::directory_iterator(kit / "tests" / "mutants")) {
+    if (entry.path().extension() != ".patch") continue;
+    Expectation e = mutant(entry.path(), CaughtBy::public_tests, into);
+    const std::string text = read(entry.path());
+    const std::regex changed(R"(\n(?:---|\+\+\+) [ab]/([^/\n]+)/)");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), changed);
+         it != std::sregex_iterator(); ++it) {
+      INFO(entry.path().filename().string() << " changes a file of " << (*it)[1].str());
+      CHECK((*it)[1].str().rfind("task" + std::to_string(e.task) + "_", 0) == 0);
+    }
+    before[e.name] = snapshot(into / e.name);
+    by_task[e.task].push_back(std::move(e));
+  }
+  REQUIRE_FALSE(by_task.empty());
+
+  // Grades `mutants` in `task` (to the first failure, or through the whole pipeline) and returns
+  // the results folder.
+  const auto grade = [&](int task, const std::vector<Expectation>& mutants, bool first) {
+    const fs::path results =
+        folder / ((first ? "first-failure-task" : "whole-task") + std::to_string(task));
+    std::vector<std::string> argv = {
+        SPRINGLAB_GRADE,  "--tasks", std::to_string(task),      "--out",
+        results.string(), "--work",  (folder / "work").string()};
+    if (first) argv.push_back("--first-failure");
+    for (const Expectation& e : mutants)
+      argv.push_back((into / e.name).string());
+    const auto [status, output] = run(argv, folder);
+    INFO(output);
+    REQUIRE(status == 0);
+    return results;
+  };
+  // The task's points (got, most) and its public tests that ran and failed.
+  struct Score {
+    double got = 0, most = 0;
+    int public_failed = 0;
+  };
+  const auto score = [](const fs::path& results, int task) {
+    Score s;
+    const auto json = nlohmann::json::parse(read(results / "results.json"));
+    for (const auto& test : json["tests"]) {
+      if (test["tags"][0] != "task" + std::to_string(task)) continue;
+      s.got += test["score"].get<double>();
+      s.most += test["max_score"].get<double>();
+      s.public_failed += test["status"] == "failed" && test["visibility"] == "visible" &&
+                         test["output"].get<std::string>().rfind("not run", 0) != 0;
+    }
+    return s;
+  };
+
+  const auto start = std::chrono::steady_clock::now();
+  std::size_t count = 0, again = 0;
+  for (const auto& [task, mutants] : by_task) {
+    count += mutants.size();
+    const fs::path first = grade(task, mutants, true);
+    std::vector<Expectation> passed_plainly;
+    for (const Expectation& e : mutants) {
+      const Score s = score(first / results_folder(e.name), task);
+      INFO(e.name << ": " << e.what);
+      CHECK(s.most > 0);
+      if (s.got == s.most) passed_plainly.push_back(e);
+    }
+    const fs::path whole = passed_plainly.empty() ? fs::path() : grade(task, passed_plainly, false);
+    again += passed_plainly.size();
+    for (const Expectation& e : mutants) {
+      const bool plain = std::none_of(passed_plainly.begin(), passed_plainly.end(),
+                                      [&](const Expectation& p) { return p.name == e.name; });
+      const fs::path mine = (plain ? first : whole) / results_folder(e.name);
+      const std::string feedback = read(mine / "feedback.txt");
+      const std::string own = section(feedback, task);
+      INFO(e.name << ": " << e.what << (plain ? "" : ", graded through the whole pipeline") << "\n"
+                  << own);
+      const Score s = score(mine, task);
+      CHECK(s.got < s.most);
+      CHECK(s.public_failed > 0);
+      const std::string first_failed = first_failure(own);
+      CHECK(first_failed.find(hidden_mark) == std::string::npos);
+      for (const std::string& words : e.first_failure) {
+        INFO("the first failure must say \"" << words << "\":\n" << first_failed);
+        CHECK(first_failed.find(words) != std::string::npos);
+      }
+      CHECK_FALSE(std::regex_search(feedback, std::regex(R"(with values:|tests/\S+\.cpp:\d+)")));
+      CHECK(snapshot(into / e.name) == before[e.name]);
+    }
+  }
+  // The reference's times, which this case's first run may have measured (with --first-failure):
+  // both variants of every test, none zero, or the other graders' limits would be the floor's.
+  std::istringstream cache(read(fs::path(SPRINGLAB_GRADE).parent_path() / "calibration.txt"));
+  std::string line;
+  while (std::getline(cache, line) && line != "---") {
+  }
+  std::map<std::string, int> variants;
+  for (std::string variant; cache >> variant;) {
+    double seconds = 0;
+    cache >> seconds;
+    std::getline(cache, line);
+    INFO("calibration.txt: " << variant << ' ' << seconds << line);
+    CHECK(seconds > 0);
+    ++variants[variant];
+  }
+  CHECK(variants["plain"] > 0);
+  CHECK(variants["sanitized"] == variants["plain"]);
+  std::cout << "grader.batch: the " << count
+            << " mutants of tests/mutants graded apart, each in its "
+            << "own task to its first failure (" << again
+            << " passing plainly, graded again with the sanitizers), in "
+            << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
+            << " s of wall time\n";
 }
