@@ -14,6 +14,7 @@
 #include <deque>
 #include <fstream>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -598,8 +599,13 @@ class Grader::Pipeline {
     const Limits limits = c.limits;
     add("test", std::move(c), [this, b, index, secret, limits](Outcome o) {
       TestResult& t = b->result.tests[std::size_t(index)];
-      if (const std::string fault = fault_of_test(o); !fault.empty())
+      if (const std::string fault = fault_of_test(o); !fault.empty()) {
+        // In order, the tests after this one were never started: settled here, or the task
+        // would never finish.
+        if (g_.settings_.first_failure)
+          stop_after(b, index, "not run: the grading stopped at the grader's own fault");
         return test_fault(b, t, fault);
+      }
       const RunVerdict v = judge(o, secret, limits, limits_text_);
       t.passed = v.passed;
       t.message = g_.settings_.raw ? v.message : without_raw_lines(v.message);
@@ -617,11 +623,7 @@ class Grader::Pipeline {
           settle(b);
           return run_plain(b, index + 1);
         }
-        if (!t.passed)
-          for (std::size_t i = std::size_t(index) + 1; i < b->result.tests.size(); ++i) {
-            b->result.tests[i].message = "not run: the grading stopped at the first failure";
-            settle(b);
-          }
+        if (!t.passed) stop_after(b, index, "not run: the grading stopped at the first failure");
         if (!crashed) return settle(b);
       }
       if (!t.passed && !crashed) return settle(b);
@@ -722,6 +724,14 @@ class Grader::Pipeline {
 
   void settle(const std::shared_ptr<TaskBuild>& b) {
     if (--b->tests_open == 0) b->finish();
+  }
+
+  // --first-failure: the tests after `index`, never started, settled with `why`.
+  void stop_after(const std::shared_ptr<TaskBuild>& b, int index, const std::string& why) {
+    for (std::size_t i = std::size_t(index) + 1; i < b->result.tests.size(); ++i) {
+      b->result.tests[i].message = why;
+      settle(b);
+    }
   }
 
   // The grader's own fault: the task is not graded (and says why), never scored 0.
@@ -897,8 +907,16 @@ void Grader::calibrate(const fs::path& cache,
     std::string variant, name;
     double seconds = 0;
     int task = 0;
-    while (in >> variant >> seconds >> task && std::getline(in, name))
+    std::set<int> unmeasured;
+    while (in >> variant >> seconds >> task && std::getline(in, name)) {
       if (signatures.count(task) > 0) calibration_[variant][name.substr(1)] = {task, seconds};
+      if (seconds <= 0) unmeasured.insert(task);
+    }
+    // A time of 0 is a test that was never run (a cache written under --first-failure by a
+    // grader before issue 27's fix): its task is measured again.
+    if (!shipped)
+      for (const int t : unmeasured)
+        signatures.erase(t);
   }
   if (shipped) return;  // without times, every test gets the floor's ten times (grading.hpp)
   std::vector<int> missing;

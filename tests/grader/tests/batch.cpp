@@ -401,16 +401,19 @@ TEST_CASE(
 
 // The mutants of tests/mutants/, each graded in its own task only, that task's tests in order and
 // stopped at the first failure (springlab-grade --first-failure, as .ci/mutants grades the
-// generated ones); a mutant that passes every test plainly (a use after scope that only
-// AddressSanitizer sees) is graded again in its task through the whole pipeline, sanitizers
-// included. Until issue 27 the [batch] case graded every mutant as a whole submission, five
-// tasks through the whole pipeline: 43 of its 101 submissions and most of its sanitized runs.
+// generated ones, one process at a time beside grader.batch). A mutant whose run there does not
+// show what is expected (it passes every test plainly, as a use after scope that only
+// AddressSanitizer sees may, or a hidden test or other words fail first) is graded again in its
+// task through the whole pipeline, sanitizers included, as a student's check runs it, and judged
+// on that. Until issue 27 the [batch] case graded every mutant as a whole submission, five tasks
+// through the whole pipeline: 43 of its 101 submissions and most of its sanitized runs.
 // What it proved is proved here from less: the mutant's task loses points by a public test whose
 // feedback, the first failure, says the words its header expects. That no other task loses any
 // follows from the patch: it changes files of its own task's folder only (checked), a task is
 // built from its own folder alone, and the other folders are the solutions' bytes, which the
 // [batch] case grades with full points. No longer run: the tests a mutant passes plainly, again
-// under the sanitizers (the solutions and the hostile submissions still take that path).
+// under the sanitizers, when its first failure is already as expected (the solutions and the
+// hostile submissions still take that path).
 TEST_CASE("Each mutant loses points in its own task, first by a public test that names the mistake",
           "[mutants]") {
   const fs::path folder = batch.parent_path() / "batch-mutants";
@@ -423,25 +426,32 @@ TEST_CASE("Each mutant loses points in its own task, first by a public test that
     if (entry.path().extension() != ".patch") continue;
     Expectation e = mutant(entry.path(), CaughtBy::public_tests, into);
     const std::string text = read(entry.path());
-    const std::regex changed(R"(\n(?:---|\+\+\+) [ab]/([^/\n]+)/)");
+    const std::regex changed(R"(\n(?:---|\+\+\+) [ab]/([^\n]+))");
     for (auto it = std::sregex_iterator(text.begin(), text.end(), changed);
          it != std::sregex_iterator(); ++it) {
-      INFO(entry.path().filename().string() << " changes a file of " << (*it)[1].str());
+      INFO(entry.path().filename().string() << " changes " << (*it)[1].str());
       CHECK((*it)[1].str().rfind("task" + std::to_string(e.task) + "_", 0) == 0);
     }
     before[e.name] = snapshot(into / e.name);
     by_task[e.task].push_back(std::move(e));
   }
   REQUIRE_FALSE(by_task.empty());
+  const std::string kit_before = snapshot(kit / "solutions") + snapshot(kit / "tasks");
 
   // Grades `mutants` in `task` (to the first failure, or through the whole pipeline) and returns
   // the results folder.
   const auto grade = [&](int task, const std::vector<Expectation>& mutants, bool first) {
     const fs::path results =
         folder / ((first ? "first-failure-task" : "whole-task") + std::to_string(task));
-    std::vector<std::string> argv = {
-        SPRINGLAB_GRADE,  "--tasks", std::to_string(task),      "--out",
-        results.string(), "--work",  (folder / "work").string()};
+    std::vector<std::string> argv = {SPRINGLAB_GRADE,
+                                     "--jobs",
+                                     "1",
+                                     "--tasks",
+                                     std::to_string(task),
+                                     "--out",
+                                     results.string(),
+                                     "--work",
+                                     (folder / "work").string()};
     if (first) argv.push_back("--first-failure");
     for (const Expectation& e : mutants)
       argv.push_back((into / e.name).string());
@@ -450,22 +460,31 @@ TEST_CASE("Each mutant loses points in its own task, first by a public test that
     REQUIRE(status == 0);
     return results;
   };
-  // The task's points (got, most) and its public tests that ran and failed.
-  struct Score {
+  // What a mutant's grading showed in its task: every failed expectation, in words ("" when it
+  // is as expected).
+  const auto judged = [](const fs::path& results, const Expectation& e) {
     double got = 0, most = 0;
     int public_failed = 0;
-  };
-  const auto score = [](const fs::path& results, int task) {
-    Score s;
     const auto json = nlohmann::json::parse(read(results / "results.json"));
     for (const auto& test : json["tests"]) {
-      if (test["tags"][0] != "task" + std::to_string(task)) continue;
-      s.got += test["score"].get<double>();
-      s.most += test["max_score"].get<double>();
-      s.public_failed += test["status"] == "failed" && test["visibility"] == "visible" &&
-                         test["output"].get<std::string>().rfind("not run", 0) != 0;
+      if (test["tags"][0] != "task" + std::to_string(e.task)) continue;
+      got += test["score"].get<double>();
+      most += test["max_score"].get<double>();
+      public_failed += test["status"] == "failed" && test["visibility"] == "visible" &&
+                       test["output"].get<std::string>().find("not run: the grading stopped") ==
+                           std::string::npos;
     }
-    return s;
+    std::ostringstream wrong;
+    if (!(most > 0 && got < most))
+      wrong << "\n  it lost no point (" << got << " of " << most << ")";
+    if (public_failed == 0) wrong << "\n  no public test failed";
+    const std::string first = first_failure(section(read(results / "feedback.txt"), e.task));
+    if (first.find(hidden_mark) != std::string::npos) wrong << "\n  a hidden test failed first";
+    for (const std::string& words : e.first_failure)
+      if (first.find(words) == std::string::npos)
+        wrong << "\n  the first failure does not say \"" << words << "\"";
+    if (!wrong.str().empty()) wrong << "\n  its first failure:\n" << first;
+    return wrong.str();
   };
 
   const auto start = std::chrono::steady_clock::now();
@@ -473,36 +492,32 @@ TEST_CASE("Each mutant loses points in its own task, first by a public test that
   for (const auto& [task, mutants] : by_task) {
     count += mutants.size();
     const fs::path first = grade(task, mutants, true);
-    std::vector<Expectation> passed_plainly;
+    std::vector<Expectation> unclear;
+    for (const Expectation& e : mutants)
+      if (!judged(first / results_folder(e.name), e).empty()) unclear.push_back(e);
+    const fs::path whole = unclear.empty() ? fs::path() : grade(task, unclear, false);
+    again += unclear.size();
     for (const Expectation& e : mutants) {
-      const Score s = score(first / results_folder(e.name), task);
-      INFO(e.name << ": " << e.what);
-      CHECK(s.most > 0);
-      if (s.got == s.most) passed_plainly.push_back(e);
-    }
-    const fs::path whole = passed_plainly.empty() ? fs::path() : grade(task, passed_plainly, false);
-    again += passed_plainly.size();
-    for (const Expectation& e : mutants) {
-      const bool plain = std::none_of(passed_plainly.begin(), passed_plainly.end(),
-                                      [&](const Expectation& p) { return p.name == e.name; });
+      const bool plain = std::none_of(unclear.begin(), unclear.end(),
+                                      [&](const Expectation& u) { return u.name == e.name; });
       const fs::path mine = (plain ? first : whole) / results_folder(e.name);
+      INFO(e.name << ": " << e.what
+                  << (plain ? ", graded to its first failure"
+                            : ", graded through the whole pipeline"));
+      CHECK(judged(mine, e) == "");
       const std::string feedback = read(mine / "feedback.txt");
-      const std::string own = section(feedback, task);
-      INFO(e.name << ": " << e.what << (plain ? "" : ", graded through the whole pipeline") << "\n"
-                  << own);
-      const Score s = score(mine, task);
-      CHECK(s.got < s.most);
-      CHECK(s.public_failed > 0);
-      const std::string first_failed = first_failure(own);
-      CHECK(first_failed.find(hidden_mark) == std::string::npos);
-      for (const std::string& words : e.first_failure) {
-        INFO("the first failure must say \"" << words << "\":\n" << first_failed);
-        CHECK(first_failed.find(words) != std::string::npos);
-      }
       CHECK_FALSE(std::regex_search(feedback, std::regex(R"(with values:|tests/\S+\.cpp:\d+)")));
       CHECK(snapshot(into / e.name) == before[e.name]);
     }
   }
+  CHECK(snapshot(kit / "solutions") + snapshot(kit / "tasks") == kit_before);
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file() && entry.path().filename() != "calibration.txt" &&
+        !entry.path().string().starts_with(into.string()) &&
+        !entry.path().string().starts_with((folder / "work").string())) {
+      INFO(entry.path());
+      CHECK(entry.file_size() < (1u << 20));
+    }
   // The reference's times, which this case's first run may have measured (with --first-failure):
   // both variants of every test, none zero, or the other graders' limits would be the floor's.
   std::istringstream cache(read(fs::path(SPRINGLAB_GRADE).parent_path() / "calibration.txt"));
@@ -520,10 +535,9 @@ TEST_CASE("Each mutant loses points in its own task, first by a public test that
   }
   CHECK(variants["plain"] > 0);
   CHECK(variants["sanitized"] == variants["plain"]);
-  std::cout << "grader.batch: the " << count
-            << " mutants of tests/mutants graded apart, each in its "
-            << "own task to its first failure (" << again
-            << " passing plainly, graded again with the sanitizers), in "
+  std::cout << "grader.mutants: the " << count
+            << " mutants of tests/mutants graded apart, each in its own task to its first failure, "
+            << again << " of them again through the whole pipeline, in "
             << std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()
             << " s of wall time\n";
 }
