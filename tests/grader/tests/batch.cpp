@@ -197,8 +197,11 @@ Expectation mutant(const fs::path& patch, CaughtBy caught_by, const fs::path& in
   CHECK_FALSE(e.first_failure.empty());
   const fs::path target = into / e.name;
   fs::copy(kit / "solutions", target, fs::copy_options::recursive);
-  const auto [status, output] = run({SPRINGLAB_PATCH, "--fuzz=0", "--silent", "-p1", "-d",
-                                     target.string(), "-i", patch.string()});
+  // Run from `into`, never from the [batch] case's folder, which that case empties at its start
+  // while the [mutants] case may be making its copies beside it.
+  const auto [status, output] = run(
+      {SPRINGLAB_PATCH, "--fuzz=0", "--silent", "-p1", "-d", target.string(), "-i", patch.string()},
+      into);
   INFO(output);
   REQUIRE(status == 0);
   return e;
@@ -250,6 +253,26 @@ std::string first_failure(const std::string& task_feedback) {
   return block;
 }
 
+// The kit's solutions/ and tasks/, to compare before and after a grading.
+std::string kit_sources() {
+  return snapshot(kit / "solutions") + snapshot(kit / "tasks");
+}
+
+// A teacher's words: no Catch2 expression and no path into the kit's tests/ (--raw shows them
+// to instructors).
+bool has_raw_lines(const std::string& feedback) {
+  return std::regex_search(feedback, std::regex(R"(with values:|tests/\S+\.cpp:\d+)"));
+}
+
+// Every report (a regular file) under `folder` stays under 1 MiB.
+void check_report_sizes(const fs::path& folder) {
+  for (const auto& entry : fs::recursive_directory_iterator(folder))
+    if (entry.is_regular_file()) {
+      INFO(entry.path());
+      CHECK(entry.file_size() < (1u << 20));
+    }
+}
+
 }  // namespace
 
 TEST_CASE(
@@ -278,7 +301,7 @@ TEST_CASE(
     before[e.name] = snapshot(submissions / e.name);
     argv.push_back((submissions / e.name).string());
   }
-  const std::string kit_before = snapshot(kit / "solutions") + snapshot(kit / "tasks");
+  const std::string kit_before = kit_sources();
   const auto start = std::chrono::steady_clock::now();
   const auto [status, output] = run(argv);
   const double seconds =
@@ -360,9 +383,7 @@ TEST_CASE(
                    << section(feedback, task));
       CHECK(std::regex_search(section(feedback, task), std::regex(pattern)));
     }
-    // A teacher's words: no Catch2 expression and no path into the kit's tests/ (--raw shows
-    // them to instructors).
-    CHECK_FALSE(std::regex_search(feedback, std::regex(R"(with values:|tests/\S+\.cpp:\d+)")));
+    CHECK_FALSE(has_raw_lines(feedback));
     CHECK(snapshot(submissions / e.name) == before[e.name]);
   }
 
@@ -391,12 +412,8 @@ TEST_CASE(
     CHECK(test["status"] == "failed");
     CHECK(test["output"].get<std::string>().find("is not implemented yet") != std::string::npos);
   }
-  CHECK(snapshot(kit / "solutions") + snapshot(kit / "tasks") == kit_before);
-  for (const auto& entry : fs::recursive_directory_iterator(batch / "results"))
-    if (entry.is_regular_file()) {
-      INFO(entry.path());
-      CHECK(entry.file_size() < (1u << 20));
-    }
+  CHECK(kit_sources() == kit_before);
+  check_report_sizes(batch / "results");
 }
 
 // The mutants of tests/mutants/, each graded in its own task only, that task's tests in order and
@@ -436,7 +453,7 @@ TEST_CASE("Each mutant loses points in its own task, first by a public test that
     by_task[e.task].push_back(std::move(e));
   }
   REQUIRE_FALSE(by_task.empty());
-  const std::string kit_before = snapshot(kit / "solutions") + snapshot(kit / "tasks");
+  const std::string kit_before = kit_sources();
 
   // Grades `mutants` in `task` (to the first failure, or through the whole pipeline) and returns
   // the results folder.
@@ -491,33 +508,43 @@ TEST_CASE("Each mutant loses points in its own task, first by a public test that
   std::size_t count = 0, again = 0;
   for (const auto& [task, mutants] : by_task) {
     count += mutants.size();
-    const fs::path first = grade(task, mutants, true);
+    // Each mutant's results folder, what its grading there showed ("" when as expected), and
+    // whether that was the whole pipeline.
+    struct Graded {
+      fs::path results;
+      std::string wrong;
+      bool whole = false;
+    };
+    std::map<std::string, Graded> graded;
     std::vector<Expectation> unclear;
-    for (const Expectation& e : mutants)
-      if (!judged(first / results_folder(e.name), e).empty()) unclear.push_back(e);
-    const fs::path whole = unclear.empty() ? fs::path() : grade(task, unclear, false);
+    const fs::path first = grade(task, mutants, true);
+    for (const Expectation& e : mutants) {
+      const fs::path mine = first / results_folder(e.name);
+      graded[e.name] = {mine, judged(mine, e)};
+      if (!graded[e.name].wrong.empty()) unclear.push_back(e);
+    }
+    if (!unclear.empty()) {
+      const fs::path whole = grade(task, unclear, false);
+      for (const Expectation& e : unclear) {
+        const fs::path mine = whole / results_folder(e.name);
+        graded[e.name] = {mine, judged(mine, e), true};
+      }
+    }
     again += unclear.size();
     for (const Expectation& e : mutants) {
-      const bool plain = std::none_of(unclear.begin(), unclear.end(),
-                                      [&](const Expectation& u) { return u.name == e.name; });
-      const fs::path mine = (plain ? first : whole) / results_folder(e.name);
+      const Graded& g = graded[e.name];
       INFO(e.name << ": " << e.what
-                  << (plain ? ", graded to its first failure"
-                            : ", graded through the whole pipeline"));
-      CHECK(judged(mine, e) == "");
-      const std::string feedback = read(mine / "feedback.txt");
-      CHECK_FALSE(std::regex_search(feedback, std::regex(R"(with values:|tests/\S+\.cpp:\d+)")));
+                  << (g.whole ? ", graded through the whole pipeline"
+                              : ", graded to its first failure"));
+      CHECK(g.wrong == "");
+      CHECK_FALSE(has_raw_lines(read(g.results / "feedback.txt")));
       CHECK(snapshot(into / e.name) == before[e.name]);
     }
   }
-  CHECK(snapshot(kit / "solutions") + snapshot(kit / "tasks") == kit_before);
-  for (const auto& entry : fs::recursive_directory_iterator(folder))
-    if (entry.is_regular_file() && entry.path().filename() != "calibration.txt" &&
-        !entry.path().string().starts_with(into.string()) &&
-        !entry.path().string().starts_with((folder / "work").string())) {
-      INFO(entry.path());
-      CHECK(entry.file_size() < (1u << 20));
-    }
+  CHECK(kit_sources() == kit_before);
+  for (const auto& results : fs::directory_iterator(folder))
+    if (results.path() != into && results.path() != folder / "work")
+      check_report_sizes(results.path());
   // The reference's times, which this case's first run may have measured (with --first-failure):
   // both variants of every test, none zero, or the other graders' limits would be the floor's.
   std::istringstream cache(read(fs::path(SPRINGLAB_GRADE).parent_path() / "calibration.txt"));
