@@ -20,8 +20,6 @@ using Catch::Matchers::WithinAbs;
 
 namespace {
 
-const SceneParameters lab;  // the lab's values
-
 // How a run ended: the divergence it reported, or the largest and last total energy.
 struct Outcome {
   std::optional<DivergenceError> divergence;
@@ -165,9 +163,10 @@ TEST_CASE("Extremes: two masses pulled a kilometre apart", "[extremes][displacem
   // stable at the lab step keeps the energy within its own error and loses it; explicit Euler,
   // unstable there, is stopped with a report.
   const std::string method = GENERATE(from_range(integrator_names()));
-  const SceneParameters p =
-      two_masses(lab.structural.k, lab.structural.b, lab.mass, 1000.0, lab.step, method);
-  const double hw = lab.step * TwoMassExact{lab.structural.k, 0, lab.mass, 0}.omega();
+  const SceneParameters p = two_masses(lab_values.structural.k, lab_values.structural.b,
+                                       lab_values.mass, 1000.0, lab_values.step, method);
+  const double hw =
+      lab_values.step * TwoMassExact{lab_values.structural.k, 0, lab_values.mass, 0}.omega();
   const int order = method == "symplectic-euler" ? 1 : 2;
   const Outcome outcome = run_scene(p, 2000);
   CAPTURE(method, outcome.start, outcome.largest, outcome.last);
@@ -205,9 +204,9 @@ TEST_CASE("Extremes: two particles at the same position", "[extremes][coincident
   // (task 1, equation (1.1)), and so is its Jacobian. Two masses at rest on top of each other
   // therefore stay put, exactly; given a velocity, they separate and the spring takes over.
   const std::string method = GENERATE(from_range(integrator_names()));
-  Scene scene =
-      build_scene(two_masses(lab.structural.k, lab.structural.b, lab.mass, -1.0, lab.step, method),
-                  implementation());
+  Scene scene = build_scene(two_masses(lab_values.structural.k, lab_values.structural.b,
+                                       lab_values.mass, -1.0, lab_values.step, method),
+                            implementation());
   REQUIRE(scene.particles.position.col(1) == scene.particles.position.col(0));
   const Vectors start = scene.particles.position;
   {
@@ -231,15 +230,17 @@ TEST_CASE("Extremes: steps from 1e-6 s to 1 s", "[extremes][step]") {
   // it is not; at 1e-6 s every method follows the exact solution to rounding.
   const std::string method = GENERATE(from_range(integrator_names()));
   const double h = GENERATE(1e-6, 1e-4, 1e-2, 1.0);
-  SceneParameters p = two_masses(lab.structural.k, lab.structural.b, lab.mass, 0.2, h, method);
+  SceneParameters p =
+      two_masses(lab_values.structural.k, lab_values.structural.b, lab_values.mass, 0.2, h, method);
   const int order = method == "rk4" ? 4 : method == "verlet" || method == "velocity-verlet" ? 2 : 1;
-  const double hw = h * TwoMassExact{lab.structural.k, 0, lab.mass, 0}.omega();
+  const double hw = h * TwoMassExact{lab_values.structural.k, 0, lab_values.mass, 0}.omega();
   CAPTURE(method, h);
   check_predicted_outcome(p, 2000, std::pow(hw, order));
   if (h == 1e-6) {
     Simulation sim(p, implementation());
     sim.advance(2000);
-    const TwoMassExact exact{lab.structural.k, lab.structural.b, lab.mass, 0.2};
+    const TwoMassExact exact{lab_values.structural.k, lab_values.structural.b, lab_values.mass,
+                             0.2};
     // The global error of an order-p method: about t w (h w)^p u0, here 4e-8 m for order 1.
     const double w = exact.omega(), tolerance = 2 * sim.time() * w * std::pow(hw, order) * 0.2;
     CHECK_THAT(stretch(sim), WithinAbs(exact.stretch(sim.time()), tolerance + 1e-12));

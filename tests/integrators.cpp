@@ -20,8 +20,6 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-const SceneParameters lab;  // the lab's values
-
 struct Method {
   const char* name;
   int order;        // of accuracy, with dampers
@@ -99,7 +97,7 @@ TEST_CASE("Integrators: convergence order against the exact two-mass solution",
           "[integrators][order]") {
   // Errors in the stretch u and its rate u' (max over 1 s) at h, h/2, h/4 shrink by 2^order.
   const Method m = GENERATE(from_range(std::begin(methods), std::end(methods)));
-  const TwoMassExact exact{lab.structural.k, lab.structural.b, lab.mass, 0.2};
+  const TwoMassExact exact{lab_values.structural.k, lab_values.structural.b, lab_values.mass, 0.2};
   std::vector<double> position_errors, velocity_errors;
   for (double h : {m.h, m.h / 2, m.h / 4}) {
     Simulation sim(two_masses(exact.k, exact.b, exact.mass, exact.u0, h, m.name), implementation());
@@ -125,11 +123,11 @@ TEST_CASE("Velocity Verlet: its positions obey the trapezoidal-damping recurrenc
   // With the last half-kick's dampers implicit, u'' = -w2 u - c u' is stepped so that
   //   (1 + hc/2) u_{n+1} = (2 - h^2 w2) u_n - (1 - hc/2) u_{n-1}   (as task 4's Verlet).
   // A lagged damper (c u'_{n+1/2} in the last kick) breaks it at order h^2 c.
-  const double h = 0.02, c = 2 * lab.structural.b / lab.mass;
-  const double w2 = 2 * lab.structural.k / lab.mass;
-  Simulation sim(
-      two_masses(lab.structural.k, lab.structural.b, lab.mass, 0.2, h, "velocity-verlet"),
-      implementation());
+  const double h = 0.02, c = 2 * lab_values.structural.b / lab_values.mass;
+  const double w2 = 2 * lab_values.structural.k / lab_values.mass;
+  Simulation sim(two_masses(lab_values.structural.k, lab_values.structural.b, lab_values.mass, 0.2,
+                            h, "velocity-verlet"),
+                 implementation());
   std::vector<double> u{stretch_of(sim)};
   run(sim, 200, [&](const Simulation& s) { u.push_back(stretch_of(s)); });
   double worst = 0.0;
@@ -146,8 +144,10 @@ TEST_CASE("Implicit Euler: one step is backward Euler, also with the spring comp
   //   u'_1 = (u'_0 - h w2 u_0) / (1 + h c + h^2 w2),   u_1 = u_0 + h u'_1.
   const double u0 = GENERATE(0.2, -0.5);
   const double h = GENERATE(0.01, 1.0);
-  const double c = 2 * lab.structural.b / lab.mass, w2 = 2 * lab.structural.k / lab.mass;
-  Simulation sim(two_masses(lab.structural.k, lab.structural.b, lab.mass, u0, h, "implicit-euler"),
+  const double c = 2 * lab_values.structural.b / lab_values.mass,
+               w2 = 2 * lab_values.structural.k / lab_values.mass;
+  Simulation sim(two_masses(lab_values.structural.k, lab_values.structural.b, lab_values.mass, u0,
+                            h, "implicit-euler"),
                  implementation());
   sim.step();
   const double rate = (0.0 - h * w2 * u0) / (1 + h * c + h * h * w2);
@@ -215,11 +215,11 @@ TEST_CASE("Energy: explicit Euler's energy grows by |1 + h lambda|^2 a step",
   // Two masses along the spring are linear: the energy of the one mode grows as rho^(2n),
   // rho^2 = 1 - 2 zeta w h + w^2 h^2, modulated within each period. A least-squares slope of
   // ln E over many periods is ln rho^2.
-  const double b = GENERATE(0.0, lab.structural.b);
+  const double b = GENERATE(0.0, lab_values.structural.b);
   // A start of 1e-9 m: after 1000 steps the amplitude is still far below the rest length
   // (beyond it the masses would pass through each other and the motion stop being linear).
-  const TwoMassExact exact{lab.structural.k, b, lab.mass, 1e-9};
-  const double h = lab.step, w = exact.omega(), z = exact.zeta();
+  const TwoMassExact exact{lab_values.structural.k, b, lab_values.mass, 1e-9};
+  const double h = lab_values.step, w = exact.omega(), z = exact.zeta();
   Simulation sim(two_masses(exact.k, b, exact.mass, exact.u0, h, "explicit-euler"),
                  implementation(), no_divergence_stop());
   double sn = 0, sy = 0, snn = 0, sny = 0, count = 0;

@@ -19,13 +19,12 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-const SceneParameters lab;  // the lab's values
-
 SceneParameters scene_named(const std::string& name) {
   if (name == "two masses")
-    return two_masses(lab.structural.k, lab.structural.b, lab.mass, 0.0, lab.step, "rk4");
-  if (name == "3x3 grid") return lab_grid(3, 3, true, lab.step, "rk4");
-  return fabric_10x10(lab.step, "rk4");
+    return two_masses(lab_values.structural.k, lab_values.structural.b, lab_values.mass, 0.0,
+                      lab_values.step, "rk4");
+  if (name == "3x3 grid") return lab_grid(3, 3, true, lab_values.step, "rk4");
+  return fabric_10x10(lab_values.step, "rk4");
 }
 
 // Linearised once per scene: the 10x10 eigen-solves are the slow part of these tests.
@@ -101,7 +100,9 @@ TEST_CASE("Stability: the frequency bound needs no eigen-solve and lies above om
   CHECK(bound >= exact * (1 - 1e-12));
   CHECK(bound <= 1.4 * exact);  // row sums of K: tight on the lab grids
   if (scene == "two masses")    // one spring: the bound is exact, sqrt(2k/m)
-    CHECK_THAT(bound, WithinRel(TwoMassExact{lab.structural.k, 0, lab.mass, 0}.omega(), 1e-12));
+    CHECK_THAT(
+        bound,
+        WithinRel(TwoMassExact{lab_values.structural.k, 0, lab_values.mass, 0}.omega(), 1e-12));
 }
 
 TEST_CASE("Stability: a pinned particle's frequency bound counts only its free neighbours",
@@ -111,12 +112,12 @@ TEST_CASE("Stability: a pinned particle's frequency bound counts only its free n
   scene.particles.pinned[0] = true;
   const Particles& p = scene.particles;
   CHECK_THAT(highest_frequency_bound(scene.springs, p.position, p.mass, p.pinned),
-             WithinRel(std::sqrt(lab.structural.k / lab.mass), 1e-12));
+             WithinRel(std::sqrt(lab_values.structural.k / lab_values.mass), 1e-12));
 }
 
 TEST_CASE("Stability: the two-mass limits are the closed forms of the notes",
           "[stability][theory]") {
-  const TwoMassExact exact{lab.structural.k, lab.structural.b, lab.mass, 0.0};
+  const TwoMassExact exact{lab_values.structural.k, lab_values.structural.b, lab_values.mass, 0.0};
   const double w = exact.omega(), z = exact.zeta();
   const LinearModel& model = model_of("two masses");
   CHECK_THAT(critical_step(model, "explicit-euler"), WithinRel(2 * z / w, 1e-9));
@@ -127,7 +128,8 @@ TEST_CASE("Stability: the two-mass limits are the closed forms of the notes",
   CHECK(std::isinf(critical_step(model, "implicit-euler")));
   // RK4 without damping: R(i y) has modulus 1 at y = 2 sqrt(2).
   const Scene undamped =
-      build_scene(two_masses(lab.structural.k, 0.0, lab.mass, 0.0, 0.01, "rk4"), implementation());
+      build_scene(two_masses(lab_values.structural.k, 0.0, lab_values.mass, 0.0, 0.01, "rk4"),
+                  implementation());
   const LinearModel free = linearise(undamped.springs, undamped.particles.position,
                                      undamped.particles.mass, undamped.particles.pinned);
   CHECK_THAT(critical_step(free, "rk4"), WithinRel(2 * std::sqrt(2.0) / w, 1e-9));
@@ -224,8 +226,8 @@ TEST_CASE("Stability: the wind's drag damps like a damper to still air",
   // In still air (wind speed 0) the wind is the drag -c v alone. On the stretch u of two masses
   // it adds c/m to the damping rate, u'' = -(2k/m) u - ((2b + c)/m) u', so explicit Euler's limit
   // 2 zeta/omega = c_total/omega^2 becomes (2b + c)/(2k), half as large again at the lab values.
-  SceneParameters p =
-      two_masses(lab.structural.k, lab.structural.b, lab.mass, 1e-4, 0.01, "explicit-euler");
+  SceneParameters p = two_masses(lab_values.structural.k, lab_values.structural.b, lab_values.mass,
+                                 1e-4, 0.01, "explicit-euler");
   p.wind.enabled = true;
   p.wind.speed = 0.0;
   const double c = p.wind.drag, k = p.structural.k, b = p.structural.b;
@@ -380,7 +382,7 @@ TEST_CASE("Stability: every limit scales as 1/omega on a scene a million times f
   // 5e-8 s. Scaling k by lambda, m by 1/mu and b by sqrt(lambda/mu) multiplies every frequency
   // and every damping rate by s = sqrt(lambda mu), damping ratios unchanged: every critical step
   // is then exactly 1/s of the lab's.
-  SceneParameters slow = lab_grid(3, 3, true, lab.step, "rk4");
+  SceneParameters slow = lab_grid(3, 3, true, lab_values.step, "rk4");
   SceneParameters fast = slow;
   const double mu = slow.mass / 1e-6, lambda = 1e9 / slow.structural.k;
   const double s = std::sqrt(lambda * mu);

@@ -21,8 +21,6 @@ using Catch::Matchers::WithinRel;
 
 namespace {
 
-const SceneParameters lab;  // the lab's values
-
 SceneParameters xpbd(SceneParameters p, int substeps, int iterations) {
   p.integrator = "xpbd";
   p.xpbd.substeps = substeps;
@@ -89,10 +87,12 @@ TEST_CASE("XPBD: one substep along a spring is backward Euler", "[integrators][x
   // w2 = 2k/m and c = 2b/m. Compressed too, and for a step with huge s^2 w2.
   const double u0 = GENERATE(0.2, -0.5);
   const double s = GENERATE(0.01, 1.0);
-  const double c = 2 * lab.structural.b / lab.mass, w2 = 2 * lab.structural.k / lab.mass;
-  Simulation sim(
-      xpbd(two_masses(lab.structural.k, lab.structural.b, lab.mass, u0, s, "xpbd"), 1, 1),
-      implementation());
+  const double c = 2 * lab_values.structural.b / lab_values.mass,
+               w2 = 2 * lab_values.structural.k / lab_values.mass;
+  Simulation sim(xpbd(two_masses(lab_values.structural.k, lab_values.structural.b, lab_values.mass,
+                                 u0, s, "xpbd"),
+                      1, 1),
+                 implementation());
   sim.step();
   const double rate = (0.0 - s * w2 * u0) / (1 + s * c + s * s * w2);
   const Vectors& v = sim.particles().velocity;
@@ -124,7 +124,7 @@ TEST_CASE("XPBD: ends at one point give no direction: nothing moves, nothing is 
   // (the four row springs share a colour and a kind), must leave every particle where it was.
   const int iterations = GENERATE(1, 3);
   const std::string path = GENERATE(as<std::string>{}, "", "chunks", "one");
-  SceneParameters p = xpbd(lab_grid(4, 2, true, lab.step, "xpbd"), 4, iterations);
+  SceneParameters p = xpbd(lab_grid(4, 2, true, lab_values.step, "xpbd"), 4, iterations);
   Scene scene = build_scene(p, implementation());
   scene.particles.position.setZero();
   const Vectors after = positions_with(path, scene, 3);
@@ -138,7 +138,7 @@ TEST_CASE("XPBD: four projections at a time give the same bits as one at a time"
   // time through a loop the compiler vectorises. Both are the same operations in the same order
   // as one at a time, so all three give the same bits.
   const int iterations = GENERATE(1, 3);
-  SceneParameters p = xpbd(fabric_10x10(lab.step, "xpbd"), 4, iterations);
+  SceneParameters p = xpbd(fabric_10x10(lab_values.step, "xpbd"), 4, iterations);
   p.rows = p.cols = 30;
   p.gravity.enabled = p.wind.enabled = true;  // in motion, with free and pinned ends
   p.pinned = "top-row";
@@ -159,13 +159,13 @@ TEST_CASE("XPBD: the damper acts across the spring too, as (1.2) says", "[integr
   // apart sideways: each substep is backward Euler on the relative velocity w, so after N
   // substeps w = w_0 / (1 + s c)^N, c = 2b/m, s = h/N. A damper only along the spring would
   // leave w nearly as it was.
-  SceneParameters p = two_masses(0.0, lab.structural.b, lab.mass, 0.0, 0.01, "xpbd");
+  SceneParameters p = two_masses(0.0, lab_values.structural.b, lab_values.mass, 0.0, 0.01, "xpbd");
   Scene scene = build_scene(xpbd(p, 10, 1), implementation());
   scene.particles.velocity.col(0) = Vec2(0.0, -0.3);
   scene.particles.velocity.col(1) = Vec2(0.0, 0.3);
   Simulation sim(std::move(scene), implementation());
   sim.advance(50);
-  const double c = 2 * lab.structural.b / lab.mass, s = 0.001;
+  const double c = 2 * lab_values.structural.b / lab_values.mass, s = 0.001;
   const double expected = 0.6 / std::pow(1 + s * c, 500);
   const Vectors& v = sim.particles().velocity;
   CHECK_THAT((v.col(1) - v.col(0)).norm(), WithinRel(expected, 1e-9));

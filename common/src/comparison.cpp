@@ -1,4 +1,5 @@
 #include "springlab/comparison.hpp"
+#include "numbers.hpp"
 
 #include "springlab/errors.hpp"
 #include "springlab/simulation.hpp"
@@ -12,11 +13,7 @@
 namespace springlab {
 namespace {
 
-std::string number(double x) {
-  std::ostringstream out;
-  out << std::setprecision(3) << x;
-  return out.str();
-}
+using internal::significant;
 
 double per_step(const RunRecord& r) {
   return r.steps > 0 ? double(r.evaluations) / double(r.steps) : 0.0;
@@ -25,7 +22,7 @@ double per_step(const RunRecord& r) {
 // "1 force evaluation", "4.6 force evaluations"
 std::string evaluations(const RunRecord& r) {
   const double n = per_step(r);
-  return number(n) + (n == 1.0 ? " force evaluation" : " force evaluations");
+  return significant(n) + (n == 1.0 ? " force evaluation" : " force evaluations");
 }
 
 // What is worth a remark: a difference well above what rounding and the order of sums give two
@@ -71,29 +68,29 @@ Comparison compare_runs(const SceneParameters& p, const RunRecord& yours,
   if ((rises && change_yours < -energy_share * own_scale) ||
       (falls && change_yours > energy_share * own_scale)) {
     facts.push_back("your energy " + std::string(change_yours < 0 ? "falls" : "rises") + " from " +
-                    number(yours.start_energy) + " J to " + number(yours.end_energy) +
+                    significant(yours.start_energy) + " J to " + significant(yours.end_energy) +
                     " J where the reference's " + (rises ? "rises" : "falls") + " to " +
-                    number(reference.end_energy) + " J");
+                    significant(reference.end_energy) + " J");
   } else if (std::abs(yours.end_energy - reference.end_energy) > energy_share * scale) {
     std::string ratio;
     if (yours.end_energy * reference.end_energy > 0 &&
         std::abs(yours.end_energy) > 2 * std::abs(reference.end_energy))
-      ratio = ", " + number(yours.end_energy / reference.end_energy) + " times";
-    facts.push_back("your energy ends at " + number(yours.end_energy) + " J" + ratio +
+      ratio = ", " + significant(yours.end_energy / reference.end_energy) + " times";
+    facts.push_back("your energy ends at " + significant(yours.end_energy) + " J" + ratio +
                     (ratio.empty() ? " where the reference's ends at " : " the reference's ") +
-                    number(reference.end_energy) + " J");
+                    significant(reference.end_energy) + " J");
   }
   const double mine = per_step(yours), theirs = per_step(reference);
   if (std::abs(mine - theirs) > evaluation_share * std::max(theirs, 1.0)) {
     std::string why;
     if (mine < theirs && p.integrator == "verlet")
       why = ": with dampers the reference repeats (4.1)-(4.2) until the velocity settles";
-    facts.push_back("your code evaluates the forces " + number(mine) +
-                    " times a step, the reference " + number(theirs) + why);
+    facts.push_back("your code evaluates the forces " + significant(mine) +
+                    " times a step, the reference " + significant(theirs) + why);
   }
   if (c.distance > distance_share * c.spacing)
-    facts.push_back("your run ends " + number(c.distance) + " m (" +
-                    number(c.distance / c.spacing) + " grid spacings) from the reference's");
+    facts.push_back("your run ends " + significant(c.distance) + " m (" +
+                    significant(c.distance / c.spacing) + " grid spacings) from the reference's");
   for (std::size_t i = 0; i < facts.size(); ++i)
     c.remark += (i == 0 ? "unlike the reference: " : "; ") + facts[i];
   return c;
@@ -124,9 +121,9 @@ std::optional<Comparison> compare_with_reference(const SceneParameters& p, const
       c.remark =
           "unlike the reference: the reference's code diverges on this scene at this h "
           "(t = " +
-          number(error.time()) + " s), and your run does not: your energy " +
-          (change < 0 ? "falls" : "rises") + " from " + number(yours.start_energy) + " J to " +
-          number(yours.end_energy) + " J in " + std::to_string(yours.steps) + " steps";
+          significant(error.time()) + " s), and your run does not: your energy " +
+          (change < 0 ? "falls" : "rises") + " from " + significant(yours.start_energy) + " J to " +
+          significant(yours.end_energy) + " J in " + std::to_string(yours.steps) + " steps";
       return c;
     }
     return compare_runs(p, yours, record_of(reference, start));
@@ -138,15 +135,16 @@ std::optional<Comparison> compare_with_reference(const SceneParameters& p, const
 std::string comparison_figures(const Comparison& c) {
   std::ostringstream out;
   if (!std::isnan(c.reference_diverged_at)) {
-    out << "ends with energy " << number(c.yours.end_energy) << " J; the reference's run diverged "
-        << "at t = " << number(c.reference_diverged_at) << " s; " << evaluations(c.yours)
-        << " a step (the reference's " << number(per_step(c.reference)) << ")";
+    out << "ends with energy " << significant(c.yours.end_energy)
+        << " J; the reference's run diverged "
+        << "at t = " << significant(c.reference_diverged_at) << " s; " << evaluations(c.yours)
+        << " a step (the reference's " << significant(per_step(c.reference)) << ")";
     return out.str();
   }
-  out << "ends " << number(c.distance) << " m from the reference's run; energy "
-      << number(c.yours.end_energy) << " J (the reference's " << number(c.reference.end_energy)
-      << " J); " << evaluations(c.yours) << " a step (the reference's "
-      << number(per_step(c.reference)) << ")";
+  out << "ends " << significant(c.distance) << " m from the reference's run; energy "
+      << significant(c.yours.end_energy) << " J (the reference's "
+      << significant(c.reference.end_energy) << " J); " << evaluations(c.yours)
+      << " a step (the reference's " << significant(per_step(c.reference)) << ")";
   return out.str();
 }
 

@@ -1,5 +1,6 @@
 // The step limits of all six integrators (stability.hpp): step matrices of the linear model,
 // bisection on their spectral radius, the per-mode formulas and the report of the runner.
+#include "numbers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
@@ -14,7 +15,7 @@
 namespace springlab {
 namespace {
 
-constexpr double infinity = std::numeric_limits<double>::infinity();
+using internal::infinity;
 
 // K and C scaled by M^(-1/2) on both sides (unit masses), restricted to the complement of the
 // null space of K + C: the translations, which neither springs nor dampers resist. That

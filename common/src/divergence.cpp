@@ -1,6 +1,7 @@
 // The diagnosis of a diverged run (divergence.hpp): a replay with the same code that watches the
 // laws the forces must keep, then the step limit of the method.
 #include "springlab/divergence.hpp"
+#include "numbers.hpp"
 
 #include "springlab/cli_values.hpp"
 #include "springlab/diagnostics.hpp"
@@ -34,19 +35,14 @@ struct ReplayAccess {
 
 namespace {
 
-constexpr double infinity = std::numeric_limits<double>::infinity();
+using internal::infinity;
+using internal::significant;
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
-
-std::string number(double x, int precision = 3) {
-  std::ostringstream out;
-  out << std::setprecision(precision) << x;
-  return out.str();
-}
 
 // A component below rounding of the other (1e-12 of the length) is written 0.
 std::string vector_text(const Vec2& v) {
   const auto component = [&](double x) { return std::abs(x) <= 1e-12 * v.norm() ? 0.0 : x; };
-  return "(" + number(component(v.x())) + ", " + number(component(v.y())) + ")";
+  return "(" + significant(component(v.x())) + ", " + significant(component(v.y())) + ")";
 }
 
 std::string method_name(std::string_view integrator) {
@@ -330,7 +326,8 @@ std::string drag_words(const Scene& scene, const CriticalStep& c) {
   out << "; it is set by the wind's drag c (w - v), not by the springs: " << p.integrator
       << " takes the drag explicitly (external forces are explicit in every integrator), and a "
          "motion the drag alone damps grows unless h < 2 m / c = 2 * "
-      << number(m) << " kg / " << number(p.wind.drag) << " N*s/m = " << number(limit) << " s";
+      << significant(m) << " kg / " << significant(p.wind.drag) << " N*s/m = " << significant(limit)
+      << " s";
   return out.str();
 }
 
@@ -351,7 +348,7 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
     if (integrator == "explicit-euler" && std::isfinite(guide))
       out << "; as a guide, for one spring it is b/k, equation (1.6), and the smallest b/k of "
              "these springs is "
-          << number(guide) << " s, which h is " << (d.step > guide ? "beyond" : "below");
+          << significant(guide) << " s, which h is " << (d.step > guide ? "beyond" : "below");
     return out.str();
   }
   if (c.source == LimitSource::no_limit || std::isinf(c.step)) {
@@ -619,8 +616,8 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     d.time = momentum_broke;
     d.amount = (momentum_end - p0).norm();
     d.equation = "(2.4)";
-    words << "Why: the total momentum (the sum of m_i v_i) grew from " << number(p0.norm())
-          << " kg*m/s to " << number(momentum_end.norm()) << " kg*m/s by t = " << end_time
+    words << "Why: the total momentum (the sum of m_i v_i) grew from " << significant(p0.norm())
+          << " kg*m/s to " << significant(momentum_end.norm()) << " kg*m/s by t = " << end_time
           << " s (it first changed at t = " << momentum_broke
           << " s), but with no gravity, wind, push or pin acting, nothing outside the springs can "
              "change it: some spring pushes both of its ends the same way, or only one of them. "
@@ -655,7 +652,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       words << "gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
                "total mass times g, "
             << vector_text(expected) << " kg*m/s by t = " << end_time << " s, but it changed by "
-            << vector_text(actual) << " kg*m/s (" << number(share)
+            << vector_text(actual) << " kg*m/s (" << significant(share)
             << " times that; it first differed at t = " << momentum_broke << " s). ";
     }
     if (!std::isnan(gravity_wrong)) {
@@ -666,7 +663,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       words << "At t = " << gravity_wrong << " s add_gravity changed the force on particle " << i
             << " by " << vector_text(gravity_added)
             << " N, but its gravity is m_i g = " << vector_text(expected) << " N ("
-            << number(particles.mass[i]) << " kg times g)";
+            << significant(particles.mass[i]) << " kg times g)";
       if ((gravity_added - g).norm() <= 1e-9 * g.norm() && std::abs(particles.mass[i] - 1) > 1e-9)
         words << ": that is g without the mass";
       else if ((gravity_added + expected).norm() <= 1e-9 * expected.norm())
@@ -686,8 +683,8 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     d.equation = spring_list_equations(p);
     words << "Why: the start is " << broken_mirror->name
           << " mirror symmetric, so the motion must stay its own mirror image, but at t = "
-          << symmetry_broke << " s a particle was " << number(asymmetry_at_break)
-          << " m from the mirror image of its partner (" << number(asymmetry_end)
+          << symmetry_broke << " s a particle was " << significant(asymmetry_at_break)
+          << " m from the mirror image of its partner (" << significant(asymmetry_end)
           << " m by t = " << end_time << " s): ";
     const std::string spring = unmatched_spring(start.springs, *broken_mirror);
     if (!spring.empty())
@@ -712,11 +709,11 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     } else {
       words << "springs and dampers can only store or remove energy, but the "
             << (spring ? "spring" : "damper") << " forces point the wrong way (they are "
-            << number(d.amount) << " times what equation " << d.equation
+            << significant(d.amount) << " times what equation " << d.equation
             << " gives), so each step gives energy";
       if (!std::isnan(energy_doubled))
-        words << ": the total energy rose from " << number(start_energy) << " J to "
-              << number(end_energy) << " J by t = " << energy_time << " s";
+        words << ": the total energy rose from " << significant(start_energy) << " J to "
+              << significant(end_energy) << " J by t = " << energy_time << " s";
       words << ". Check the sign in "
             << (spring ? "F_pq = -k (|r_p - r_q| - l0) (r_p - r_q) / |r_p - r_q|, equation (1.1)"
                        : "F_pq = -b (v_p - v_q), equation (1.2)")
@@ -734,10 +731,10 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
       words << sentence;
     }
     if (d.critical.step > 0 && !drag_words(start, d.critical).empty())
-      words << "Make h smaller than " << number(d.critical.step)
+      words << "Make h smaller than " << significant(d.critical.step)
             << " s, or wind.drag smaller or the mass larger: another integrator does not help.";
     else if (d.critical.step > 0)
-      words << "Make h smaller than " << number(d.critical.step)
+      words << "Make h smaller than " << significant(d.critical.step)
             << " s, or choose an integrator with a larger critical step (springlab-run "
                "--stability lists them).";
     else
@@ -759,30 +756,30 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     const std::string forces_words =
         forces_right ? "the forces are right (on " + std::to_string(fit.samples) +
                            " evaluations they are exactly what (1.1), (1.2) and (2.3) give)"
-        : signs.exact
-            ? "the forces are " + number(signs.alpha) + " times the spring forces" +
-                  (signs.has_damping ? " plus " + number(signs.beta) + " times the damper forces"
-                                     : std::string()) +
-                  " that (1.1), (1.2) and (2.3) give (on " + std::to_string(fit.samples) +
-                  " evaluations)"
-            : "the forces kept what the kit checks";
+        : signs.exact ? "the forces are " + significant(signs.alpha) + " times the spring forces" +
+                            (signs.has_damping
+                                 ? " plus " + significant(signs.beta) + " times the damper forces"
+                                 : std::string()) +
+                            " that (1.1), (1.2) and (2.3) give (on " + std::to_string(fit.samples) +
+                            " evaluations)"
+                      : "the forces kept what the kit checks";
     const std::string large_motion =
         "that critical step holds for small motions about rest, and here the springs start "
         "stretched or shrunk by up to " +
-        number(100.0 * start_strain) + " % of their rest length" +
+        significant(100.0 * start_strain) + " % of their rest length" +
         (std::isnan(strain_at_growth)
              ? std::string()
-             : " (" + number(100.0 * strain_at_growth) +
-                   " % when the energy had doubled, t = " + number(energy_doubled) + " s)") +
+             : " (" + significant(100.0 * strain_at_growth) +
+                   " % when the energy had doubled, t = " + significant(energy_doubled) + " s)") +
         ", beyond what the linear theory behind it describes";
     // Before the code under test is blamed, or h: the kit's reference on this scene at this h.
     const std::optional<bool> reference_too =
         reference_diverges(p, impl, start_time + double(steps) * p.step, budget);
     const std::string grown = std::isnan(energy_doubled)
                                   ? std::string()
-                                  : "the total energy rose from " + number(start_energy) +
-                                        " J to " + number(end_energy) +
-                                        " J by t = " + number(energy_time) + " s; ";
+                                  : "the total energy rose from " + significant(start_energy) +
+                                        " J to " + significant(end_energy) +
+                                        " J by t = " + significant(energy_time) + " s; ";
     if (reference_too && *reference_too) {
       d.law = BrokenLaw::step_size;
       d.time = std::isnan(energy_doubled) ? start_time : energy_doubled;

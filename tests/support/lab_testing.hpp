@@ -31,6 +31,9 @@ struct StringMaker<springlab::Vec2> {
 
 namespace springlab::testing {
 
+/// The lab's values (SceneParameters' defaults: h = 0.01 s, m = 0.2 kg, k = 20 N/m, ...).
+inline const SceneParameters lab_values;
+
 /// Matches a Vec2 within `tolerance` (Euclidean distance) of `expected`; prints both on failure.
 class IsNear : public Catch::MatcherBase<Vec2> {
  public:

@@ -1,5 +1,7 @@
 #include "checks.hpp"
 
+#include "policy.hpp"
+
 #include <cxxabi.h>
 
 #include <algorithm>
@@ -12,11 +14,6 @@
 
 namespace springlab::grader {
 namespace {
-
-bool is_within(const fs::path& file, const fs::path& folder) {
-  const auto [end, _] = std::mismatch(folder.begin(), folder.end(), file.begin(), file.end());
-  return end == folder.end();
-}
 
 fs::path canonical_or_same(const fs::path& path) {
   std::error_code error;

@@ -1,5 +1,6 @@
 #include "isolation.hpp"
 
+#include "policy.hpp"
 #include "process.hpp"
 
 #include <unistd.h>
@@ -11,11 +12,6 @@ namespace springlab::grader {
 namespace {
 
 constexpr uid_t nobody = 65534;  // nobody and nogroup on Debian and Ubuntu
-
-bool is_within(const fs::path& path, const fs::path& folder) {
-  const auto [end, _] = std::mismatch(folder.begin(), folder.end(), path.begin(), path.end());
-  return end == folder.end();
-}
 
 std::string find_program(const std::string& name) {
   for (const char* folder : {"/usr/bin", "/bin", "/usr/sbin", "/usr/local/bin"})

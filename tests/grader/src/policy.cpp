@@ -180,12 +180,12 @@ std::string read_file(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+}  // namespace
+
 bool is_within(const fs::path& file, const fs::path& folder) {
   const auto [end, _] = std::mismatch(folder.begin(), folder.end(), file.begin(), file.end());
   return end == folder.end();
 }
-
-}  // namespace
 
 std::string PolicyBreach::text() const {
   return file + ":" + std::to_string(line) + ": " + what;

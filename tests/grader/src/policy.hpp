@@ -31,6 +31,10 @@ struct PolicyBreach {
 /// by the name an #include gives them.
 bool is_standard_header(std::string_view name);
 
+/// True when `file` lies in `folder` (both lexically normal, as canonical paths are): compared
+/// by path element, so that /a/bc is not within /a/b.
+bool is_within(const fs::path& file, const fs::path& folder);
+
 /// The first breach in `files` (their names in `copy`, read from there), if any.
 std::optional<PolicyBreach> check_sources(const fs::path& copy,
                                           const std::vector<std::string>& files);

@@ -118,6 +118,8 @@ std::string xml(const std::string& text) {
   return out;
 }
 
+}  // namespace
+
 std::string csv(std::string field) {
   // A spreadsheet would run a name such as =1+2 as a formula: a leading quote keeps it text.
   if (!field.empty() && std::string("=+-@").find(field.front()) != std::string::npos)
@@ -128,8 +130,6 @@ std::string csv(std::string field) {
     quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
   return quoted + "\"";
 }
-
-}  // namespace
 
 std::string results_folder(const std::string& name) {
   // One folder per name whatever the names: a name that could clash with the grader's own files

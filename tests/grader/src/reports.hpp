@@ -37,6 +37,10 @@ std::string results_json(const SubmissionResult& result, double seconds);
 /// A JUnit XML report of one task.
 std::string junit_report(const SubmissionResult& result, int task);
 
+/// `field` as one CSV field: quoted when it holds a comma, a quote or a line break, and with a
+/// leading ' when a spreadsheet would read it as a formula (=, +, -, @).
+std::string csv(std::string field);
+
 /// gradebook.csv: "submission,task1,task2,task3,task4,task5,total" and one row per submission.
 std::string gradebook(const std::vector<SubmissionResult>& results);
 

@@ -58,17 +58,6 @@ std::string marker_text(const Recorded& r) {
   return j.dump(2, ' ', false, json::error_handler_t::replace) + "\n";
 }
 
-std::string csv(std::string field) {
-  // A spreadsheet would run a name such as =1+2 as a formula: a leading quote keeps it text.
-  if (!field.empty() && std::string("=+-@").find(field.front()) != std::string::npos)
-    field.insert(0, "'");
-  if (field.find_first_of(",\"\n\r") == std::string::npos) return field;
-  std::string quoted = "\"";
-  for (const char c : field)
-    quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
 }  // namespace
 
 ResultsFolder::ResultsFolder(fs::path out, bool replace) : out_(std::move(out)) {
