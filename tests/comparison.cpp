@@ -20,11 +20,6 @@ void symplectic_for_explicit(const AccelerationFunction& a, double h, Vectors& r
   r += h * v;
 }
 
-void gravity_without_mass(const Eigen::VectorXd& mass, const Vec2& g, Vectors& force) {
-  for (Eigen::Index i = 0; i < mass.size(); ++i)
-    force.col(i) += g;
-}
-
 // Textbook Störmer–Verlet: (4.1) once, with the velocity passed in, and (4.2) for the velocity.
 void verlet_once(const AccelerationFunction& a, double h, Vectors& r, Vectors& v,
                  VerletHistory& history) {
@@ -108,7 +103,7 @@ TEST_CASE("Comparison: gravity without the mass ends with another energy",
           "[diagnosis][comparison]") {
   const SceneParameters p = task_scene(5);
   Implementation wrong = SPRINGLAB_IMPL::implementation();
-  wrong.add_gravity = gravity_without_mass;
+  wrong.add_gravity = testing::gravity_without_mass;
   const Comparison c = run_against_reference(p, wrong, 5.0);
   INFO(c.remark);
   // The reference's energy falls (dampers; gravity's potential is counted), the wrong one's rises

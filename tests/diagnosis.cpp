@@ -80,12 +80,6 @@ std::vector<Spring> last_spring_missing(int rows, int cols, const SpringFamilyPa
   return springs;
 }
 
-// Gravity without the mass: F_i += g.
-void gravity_without_mass(const Eigen::VectorXd& mass, const Vec2& g, Vectors& force) {
-  for (Eigen::Index i = 0; i < mass.size(); ++i)
-    force.col(i) += g;
-}
-
 // The spring force (1.1) without a guard for coincident ends: what 0/0 gives there (NaN), the
 // reference's forces elsewhere.
 void unguarded_forces(const std::vector<Spring>& springs, const Vectors& r, const Vectors& v,
@@ -243,7 +237,7 @@ TEST_CASE("Diagnosis: gravity without the mass is named, with the momentum gravi
   p.gravity.enabled = true;
   REQUIRE(p.step < critical_step_at_rest(p));
   Implementation impl = implementation();
-  impl.add_gravity = gravity_without_mass;
+  impl.add_gravity = testing::gravity_without_mass;
   Simulation sim(p, impl);
   const auto error = run_to_divergence(sim, 100000);
   REQUIRE(error);

@@ -35,11 +35,6 @@ const Method methods[] = {{"explicit-euler", 1, 1, 0.002},
                           {"implicit-euler", 1, 1, 0.002},
                           {"xpbd", 1, 0, 0.02}};  // no a(r, v): tests/xpbd.cpp counts its work
 
-double stretch_of(const Simulation& s) {
-  const Vectors& r = s.particles().position;
-  return (r.col(1) - r.col(0)).norm() - s.scene().springs.front().rest_length;
-}
-
 double stretch_rate_of(const Simulation& s) {
   const Vectors& v = s.particles().velocity;
   return v(0, 1) - v(0, 0);

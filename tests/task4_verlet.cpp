@@ -38,11 +38,6 @@ struct LinearOscillator {
   struct NeverStops {};
 };
 
-double stretch_of(const Simulation& s) {
-  const Vectors& r = s.particles().position;
-  return (r.col(1) - r.col(0)).norm() - s.scene().springs.front().rest_length;
-}
-
 double largest(const Vectors& a) {
   return a.lpNorm<Eigen::Infinity>();
 }

@@ -28,11 +28,6 @@ SceneParameters xpbd(SceneParameters p, int substeps, int iterations) {
   return p;
 }
 
-double stretch_of(const Simulation& s) {
-  const Vectors& r = s.particles().position;
-  return (r.col(1) - r.col(0)).norm() - s.scene().springs.front().rest_length;
-}
-
 // Least-squares slope of log(y) against log(x).
 double log_slope(const std::vector<double>& x, const std::vector<double>& y) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

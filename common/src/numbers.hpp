@@ -1,5 +1,5 @@
 // Numbers the core's files share: a constant and the way messages print a value. Private to the
-// core library; one definition, so that its files can also be compiled together (unity files).
+// core library.
 #pragma once
 
 #include <iomanip>

@@ -34,6 +34,18 @@ namespace springlab::testing {
 /// The lab's values (SceneParameters' defaults: h = 0.01 s, m = 0.2 kg, k = 20 N/m, ...).
 inline const SceneParameters lab_values;
 
+/// The stretch |r_1 - r_0| - l0 of the scene's first spring (the two-mass scenes).
+inline double stretch_of(const Simulation& s) {
+  const Vectors& r = s.particles().position;
+  return (r.col(1) - r.col(0)).norm() - s.scene().springs.front().rest_length;
+}
+
+/// A planted mistake for add_gravity: F_i += g, the mass left out of m_i g.
+inline void gravity_without_mass(const Eigen::VectorXd& mass, const Vec2& g, Vectors& force) {
+  for (Eigen::Index i = 0; i < mass.size(); ++i)
+    force.col(i) += g;
+}
+
 /// Matches a Vec2 within `tolerance` (Euclidean distance) of `expected`; prints both on failure.
 class IsNear : public Catch::MatcherBase<Vec2> {
  public:
