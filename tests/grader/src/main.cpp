@@ -59,6 +59,7 @@ struct Options {
   std::vector<int> tasks{1, 2, 3, 4, 5};
   bool student = false;
   bool max_points = false;
+  bool calibrate = false;
   bool replace = false;
   Settings settings;
 };
@@ -205,6 +206,28 @@ void stop_on_signal(int signal) {
   interrupt(signal);
 }
 
+// The reference's times of --tasks, measured now unless this build's cache has them, and nothing
+// graded: run once before gradings that start side by side (the kit's own suite), which would
+// otherwise each measure them again.
+int calibrate_only(const Options& options, const Kit& kit, const std::vector<TestInfo>& tests) {
+  if (!options.submissions.empty())
+    throw UsageError("--calibrate grades nothing: give no submission with it (" +
+                     escaped(options.submissions.front()) + ")");
+  Settings settings = options.settings;
+  settings.tasks = options.tasks;
+  settings.work = options.work;
+  const int work_lock = take_work_folder(settings.work);
+  const Isolation isolation = Isolation::probe({kit.root, settings.work});
+  Grader grader(kit, tests, settings, isolation);
+  const fs::path cache = options.kit.parent_path() / "calibration.txt";
+  grader.calibrate(cache, [](const std::string& line) {
+    std::cerr << "springlab-grade: " << line << "\n";
+  });
+  std::cerr << "springlab-grade: the reference's times are in " << escaped(cache.string()) << "\n";
+  close(work_lock);
+  return 0;
+}
+
 int grade(Options options) {
   const Kit kit = read_kit(options.kit);
   options.out = absolute_folder(options.out);
@@ -242,6 +265,7 @@ int grade(Options options) {
       std::cout << "task" << task << ' ' << points << '\n';
     return 0;
   }
+  if (options.calibrate) return calibrate_only(options, kit, tests);
   if (options.submissions.empty()) throw UsageError("submission is required");
   const std::vector<Submission> submissions = find_all(options, kit);
   for (const Submission& s : submissions)
@@ -461,6 +485,9 @@ int main(int argc, char** argv) {
   app.add_flag("--first-failure", options.settings.first_failure,
                "run each task's tests in order, plainly, and stop at its first failure (for "
                "measuring feedback, not for grading)");
+  app.add_flag("--calibrate", options.calibrate,
+               "measure the reference's time per test of --tasks, unless this build already has, "
+               "and grade nothing (else the first grading measures it)");
   app.add_flag("--max-points", options.max_points,
                "print each task's maximum (the sum of its tests' points) and grade nothing");
   app.add_option("--kit", options.kit, "the kit.toml of the build to use")->capture_default_str();

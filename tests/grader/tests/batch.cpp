@@ -545,8 +545,9 @@ TEST_CASE("Each mutant loses points in its own task, first by a public test that
   for (const auto& results : fs::directory_iterator(folder))
     if (results.path() != into && results.path() != folder / "work")
       check_report_sizes(results.path());
-  // The reference's times, which this case's first run may have measured (with --first-failure):
-  // both variants of every test, none zero, or the other graders' limits would be the floor's.
+  // The reference's times these gradings used (the build's cache, measured by grader.calibration
+  // before them; tests/calibration.sh checks what a grading to the first failure measures): both
+  // variants of every test, none zero, or the other graders' limits would be the floor's.
   std::istringstream cache(read(fs::path(SPRINGLAB_GRADE).parent_path() / "calibration.txt"));
   std::string line;
   while (std::getline(cache, line) && line != "---") {
