@@ -220,9 +220,8 @@ int calibrate_only(const Options& options, const Kit& kit, const std::vector<Tes
   const Isolation isolation = Isolation::probe({kit.root, settings.work});
   Grader grader(kit, tests, settings, isolation);
   const fs::path cache = options.kit.parent_path() / "calibration.txt";
-  grader.calibrate(cache, [](const std::string& line) {
-    std::cerr << "springlab-grade: " << line << "\n";
-  });
+  grader.calibrate(
+      cache, [](const std::string& line) { std::cerr << "springlab-grade: " << line << "\n"; });
   std::cerr << "springlab-grade: the reference's times are in " << escaped(cache.string()) << "\n";
   close(work_lock);
   return 0;
