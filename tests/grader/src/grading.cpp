@@ -889,7 +889,7 @@ std::vector<SubmissionResult> Grader::grade(
 // The cache: a line "task N SIGNATURE" per task measured, "---", then "VARIANT SECONDS N NAME"
 // per test. A task is measured when first graded and again once its programs change; a task
 // not graded now keeps its lines as they are.
-void Grader::calibrate(const fs::path& cache,
+bool Grader::calibrate(const fs::path& cache,
                        const std::function<void(const std::string&)>& progress) {
   // A student release has no solutions/ to time: it carries the times the instructor's build
   // measured (another machine's, but the limits are ten times as long and at least 2 s).
@@ -918,7 +918,7 @@ void Grader::calibrate(const fs::path& cache,
       for (const int t : unmeasured)
         signatures.erase(t);
   }
-  if (shipped) return;  // without times, every test gets the floor's ten times (grading.hpp)
+  if (shipped) return true;  // without times, every test gets the floor's ten times (grading.hpp)
   std::vector<int> missing;
   for (const int task : settings_.tasks) {
     const std::string signature = task_signature(kit_, tests_, task);
@@ -928,7 +928,7 @@ void Grader::calibrate(const fs::path& cache,
     signatures[task] = signature;
     missing.push_back(task);
   }
-  if (missing.empty()) return;
+  if (missing.empty()) return true;
   const Settings saved = settings_;
   settings_.tasks = missing;
   settings_.hidden = true;  // one measurement serves a student's check and an instructor's grading
@@ -997,7 +997,9 @@ void Grader::calibrate(const fs::path& cache,
     write_file(cache, out.str());
   } catch (const std::runtime_error& error) {
     if (progress) progress(std::string(error.what()) + " (measured again next time)");
+    return false;
   }
+  return true;
 }
 
 }  // namespace springlab::grader

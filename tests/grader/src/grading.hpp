@@ -93,8 +93,10 @@ class Grader {
   /// Grades the kit's own solutions with generous limits and keeps each test's time, for the
   /// tasks being graded whose times `cache` lacks or whose programs changed since. Throws
   /// std::runtime_error when a reference test fails: the kit is broken, and no submission could be
-  /// graded fairly. `progress` is told of each task measured, in words.
-  void calibrate(const fs::path& cache,
+  /// graded fairly. `progress` is told of each task measured, in words. Returns false when the
+  /// times were measured but `cache` could not be written (said to `progress`; the next run
+  /// measures them again).
+  bool calibrate(const fs::path& cache,
                  const std::function<void(const std::string&)>& progress = {});
 
   /// Grades every submission. `task_done` is called as each task of a submission is finished

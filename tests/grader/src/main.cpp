@@ -208,11 +208,14 @@ void stop_on_signal(int signal) {
 
 // The reference's times of --tasks, measured now unless this build's cache has them, and nothing
 // graded: run once before gradings that start side by side (the kit's own suite), which would
-// otherwise each measure them again.
+// otherwise each measure them again. A cache that cannot be written is an error here (exit 1):
+// measuring is all this run is for.
 int calibrate_only(const Options& options, const Kit& kit, const std::vector<TestInfo>& tests) {
-  if (!options.submissions.empty())
-    throw UsageError("--calibrate grades nothing: give no submission with it (" +
-                     escaped(options.submissions.front()) + ")");
+  if (kit.solutions.empty()) {
+    std::cerr << "springlab-grade: nothing to measure: this build grades with the reference's "
+              << "times shipped with it (" << escaped(kit.calibration.string()) << ")\n";
+    return 0;
+  }
   Settings settings = options.settings;
   settings.tasks = options.tasks;
   settings.work = options.work;
@@ -220,14 +223,22 @@ int calibrate_only(const Options& options, const Kit& kit, const std::vector<Tes
   const Isolation isolation = Isolation::probe({kit.root, settings.work});
   Grader grader(kit, tests, settings, isolation);
   const fs::path cache = options.kit.parent_path() / "calibration.txt";
-  grader.calibrate(
+  const bool written = grader.calibrate(
       cache, [](const std::string& line) { std::cerr << "springlab-grade: " << line << "\n"; });
-  std::cerr << "springlab-grade: the reference's times are in " << escaped(cache.string()) << "\n";
   close(work_lock);
+  if (!written)
+    throw std::runtime_error(
+        "--calibrate: the reference's times were measured but could not be "
+        "kept in " +
+        escaped(cache.string()));
+  std::cerr << "springlab-grade: the reference's times are in " << escaped(cache.string()) << "\n";
   return 0;
 }
 
 int grade(Options options) {
+  if (options.calibrate && !options.submissions.empty())
+    throw UsageError("--calibrate grades nothing: give no submission with it (" +
+                     escaped(options.submissions.front()) + ")");
   const Kit kit = read_kit(options.kit);
   options.out = absolute_folder(options.out);
   // The work folder lives under the kit's build/ (ignored by git) whatever the current folder,
@@ -451,8 +462,9 @@ int main(int argc, char** argv) {
                  "results: gradebook.csv and a folder per submission; the results of submissions "
                  "not graded now are kept")
       ->capture_default_str();
-  app.add_flag("--replace", options.replace,
-               "empty --out first (else the other submissions' results there are kept)");
+  CLI::Option* replace =
+      app.add_flag("--replace", options.replace,
+                   "empty --out first (else the other submissions' results there are kept)");
   app.add_option("--work", options.work,
                  "private copies and builds (default: the kit's build/grade/work/)");
   app.add_flag("--keep-work", options.settings.keep_work,
@@ -476,19 +488,27 @@ int main(int argc, char** argv) {
   app.add_option("--memory", options.settings.memory_mb, "MB of memory per test process")
       ->check(CLI::Range(64L, 65536L))
       ->capture_default_str();
-  app.add_flag("--student", options.student,
-               "a student's check: the feedback on the terminal; exit 1 unless every test passes");
+  CLI::Option* student = app.add_flag(
+      "--student", options.student,
+      "a student's check: the feedback on the terminal; exit 1 unless every test passes");
   app.add_flag("--raw", options.settings.raw,
                "for instructors: show each failure's test file, line and expression as Catch2 "
                "states them, after the student's wording");
-  app.add_flag("--first-failure", options.settings.first_failure,
-               "run each task's tests in order, plainly, and stop at its first failure (for "
-               "measuring feedback, not for grading)");
+  CLI::Option* first_failure =
+      app.add_flag("--first-failure", options.settings.first_failure,
+                   "run each task's tests in order, plainly, and stop at its first failure (for "
+                   "measuring feedback, not for grading)");
+  CLI::Option* max_points =
+      app.add_flag("--max-points", options.max_points,
+                   "print each task's maximum (the sum of its tests' points) and grade nothing");
   app.add_flag("--calibrate", options.calibrate,
-               "measure the reference's time per test of --tasks, unless this build already has, "
-               "and grade nothing (else the first grading measures it)");
-  app.add_flag("--max-points", options.max_points,
-               "print each task's maximum (the sum of its tests' points) and grade nothing");
+               "measure the reference's time per test of --tasks, unless this build already has "
+               "(a student release ships them), and grade nothing (else the first grading "
+               "measures it)")
+      ->excludes(replace)
+      ->excludes(student)
+      ->excludes(first_failure)
+      ->excludes(max_points);
   app.add_option("--kit", options.kit, "the kit.toml of the build to use")->capture_default_str();
   try {
     app.parse(argc, argv);

@@ -2,8 +2,9 @@
 # The reference's times as a grading to the first failure measures them (springlab-grade
 # --first-failure, as the mutants are graded): both runs, plain and sanitized, of every test of the
 # task, none zero; a cache without the sanitized times would give every later sanitized run only
-# the floor's limit. Then --calibrate with the times already there measures nothing again, and
-# with a submission is refused. With a copy of the build's kit.toml, so that the cache measured
+# the floor's limit. Then --calibrate: it measures another task and keeps the one already there,
+# measures nothing twice, is refused with a submission or a grading's option, and fails when it
+# cannot keep what it measured. With a copy of the build's kit.toml, so that the cache measured
 # (calibration.txt beside it) is this test's own.
 # Usage: calibration.sh GRADE KIT SCRATCH
 set -euo pipefail
@@ -17,19 +18,43 @@ cache=$scratch/calibration.txt
 "$grade" --kit "$scratch/kit.toml" --first-failure --tasks 3 --out "$scratch/results" \
   --work "$scratch/work" "$kit/solutions" >"$scratch/log" 2>&1 || fail "the grading failed: exit $?"
 grep -q "measuring the reference's time per test, task 3 " "$scratch/log" || fail "nothing was measured"
-tests=$("$(dirname "$grade")/springlab-grade-task3" --list | grep -c .)
-[ "$tests" -gt 0 ] || fail "springlab-grade-task3 --list names no test"
-for variant in plain sanitized; do
-  timed=$(awk -v v="$variant" '$1 == v && $2 > 0 && $3 == 3' "$cache" | wc -l)
-  [ "$timed" -eq "$tests" ] || fail "$variant: $timed of task 3's $tests tests have a time above 0"
-done
+# Every test of task $1 has a time above 0 in both variants.
+all_timed() {
+  local tests timed variant
+  tests=$("$(dirname "$grade")/springlab-grade-task$1" --list | grep -c . || true)
+  [ "$tests" -gt 0 ] || fail "springlab-grade-task$1 --list names no test"
+  for variant in plain sanitized; do
+    timed=$(awk -v v="$variant" -v t="$1" '$1 == v && $2 > 0 && $3 == t' "$cache" | wc -l)
+    [ "$timed" -eq "$tests" ] || fail "$variant: $timed of task $1's $tests tests have a time above 0"
+  done
+}
+all_timed 3
+task3=$(awk '$3 == 3' "$cache")
+"$grade" --kit "$scratch/kit.toml" --calibrate --tasks 2 --work "$scratch/work" >"$scratch/log" 2>&1 ||
+  fail "--calibrate --tasks 2 failed: exit $?"
+grep -q "measuring the reference's time per test, task 2 " "$scratch/log" || fail "task 2 not measured"
+all_timed 2
+[ "$(awk '$3 == 3' "$cache")" = "$task3" ] || fail "--calibrate --tasks 2 did not keep task 3's times"
 before=$(cat "$cache")
-"$grade" --kit "$scratch/kit.toml" --calibrate --tasks 3 --work "$scratch/work" >"$scratch/log" 2>&1 ||
+"$grade" --kit "$scratch/kit.toml" --calibrate --tasks 2,3 --work "$scratch/work" >"$scratch/log" 2>&1 ||
   fail "--calibrate failed: exit $?"
-! grep -q "measuring the reference's time" "$scratch/log" || fail "--calibrate measured task 3 again"
+! grep -q "measuring the reference's time" "$scratch/log" || fail "--calibrate measured again"
 [ "$(cat "$cache")" = "$before" ] || fail "--calibrate changed the cache it had no need to measure"
 status=0
 "$grade" --kit "$scratch/kit.toml" --calibrate "$kit/solutions" >"$scratch/log" 2>&1 || status=$?
 [ "$status" -eq 2 ] && grep -q "\-\-calibrate grades nothing: give no submission with it" "$scratch/log" ||
   fail "--calibrate with a submission: exit $status"
-echo "calibration: ok: plain and sanitized times for all $tests tests of task 3, none measured twice"
+status=0
+"$grade" --kit "$scratch/kit.toml" --calibrate --first-failure >"$scratch/log" 2>&1 || status=$?
+[ "$status" -eq 2 ] && grep -Eq -- "--first-failure excludes --calibrate|--calibrate excludes --first-failure" "$scratch/log" ||
+  fail "--calibrate --first-failure: exit $status"
+# A cache that cannot be written (a folder in its place): exit 1, said.
+mkdir -p "$scratch/unwritable/calibration.txt/in-the-way"
+cp "$scratch/kit.toml" "$scratch/unwritable/kit.toml"
+status=0
+"$grade" --kit "$scratch/unwritable/kit.toml" --calibrate --tasks 3 --work "$scratch/work" \
+  >"$scratch/log" 2>&1 || status=$?
+[ "$status" -eq 1 ] && grep -q "measured but could not be kept in" "$scratch/log" ||
+  fail "--calibrate with a cache it cannot write: exit $status"
+echo "calibration: ok: both variants of every test of tasks 3 (to the first failure) and 2" \
+  "(--calibrate), the others kept, none measured twice, a cache it cannot write an error"
