@@ -206,6 +206,11 @@ void stop_on_signal(int signal) {
   interrupt(signal);
 }
 
+// A line of the reference's measurement (Grader::calibrate's progress), on the terminal.
+void say_measuring(const std::string& line) {
+  std::cerr << "springlab-grade: " << line << "\n";
+}
+
 // The reference's times of --tasks, measured now unless this build's cache has them, and nothing
 // graded: run once before gradings that start side by side (the kit's own suite), which would
 // otherwise each measure them again. A cache that cannot be written is an error here (exit 1):
@@ -223,13 +228,11 @@ int calibrate_only(const Options& options, const Kit& kit, const std::vector<Tes
   const Isolation isolation = Isolation::probe({kit.root, settings.work});
   Grader grader(kit, tests, settings, isolation);
   const fs::path cache = options.kit.parent_path() / "calibration.txt";
-  const bool written = grader.calibrate(
-      cache, [](const std::string& line) { std::cerr << "springlab-grade: " << line << "\n"; });
+  const bool written = grader.calibrate(cache, say_measuring);
   close(work_lock);
   if (!written)
     throw std::runtime_error(
-        "--calibrate: the reference's times were measured but could not be "
-        "kept in " +
+        "--calibrate: the reference's times were measured but could not be kept in " +
         escaped(cache.string()));
   std::cerr << "springlab-grade: the reference's times are in " << escaped(cache.string()) << "\n";
   return 0;
@@ -328,9 +331,7 @@ int grade(Options options) {
   const Isolation isolation = Isolation::probe({kit.root, options.out, settings.work});
   std::cerr << "springlab-grade: " << isolation.describe() << "\n";
   Grader grader(kit, tests, settings, isolation);
-  grader.calibrate(options.kit.parent_path() / "calibration.txt", [](const std::string& line) {
-    std::cerr << "springlab-grade: " << line << "\n";
-  });
+  grader.calibrate(options.kit.parent_path() / "calibration.txt", say_measuring);
   if (options.student) {
     std::cerr << "springlab-grade: compiling your code, then running each test in a process of "
               << "its own, plainly and with the sanitizers (which check every memory access)\n";
