@@ -109,6 +109,40 @@ std::string work_folder_full(const fs::path& work) {
   return why.str();
 }
 
+// A calibration cache as read: each task's signature, its tests' times, and the tasks holding a
+// time of 0 (a test never run: a cache written under --first-failure before issue 27's fix).
+struct CacheContents {
+  std::map<int, std::string> signatures;
+  Calibration times;
+  std::set<int> unmeasured;
+};
+
+CacheContents read_cache(const fs::path& file) {
+  CacheContents cache;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line) && line != "---") {
+    std::istringstream words(line);
+    std::string word, signature;
+    int task = 0;
+    if (words >> word >> task >> signature && word == "task") cache.signatures[task] = signature;
+  }
+  std::string variant, name;
+  double seconds = 0;
+  int task = 0;
+  while (in >> variant >> seconds >> task && std::getline(in, name)) {
+    if (cache.signatures.count(task) > 0) cache.times[variant][name.substr(1)] = {task, seconds};
+    if (seconds <= 0) cache.unmeasured.insert(task);
+  }
+  return cache;
+}
+
+// Drops every time of `task` from `times`.
+void forget_task(Calibration& times, int task) {
+  for (auto& [variant, tests] : times)
+    std::erase_if(tests, [task](const auto& entry) { return entry.second.task == task; });
+}
+
 }  // namespace
 
 double TaskResult::points() const {
@@ -894,37 +928,21 @@ bool Grader::calibrate(const fs::path& cache,
   // A student release has no solutions/ to time: it carries the times the instructor's build
   // measured (another machine's, but the limits are ten times as long and at least 2 s).
   const bool shipped = kit_.solutions.empty();
-  std::map<int, std::string> signatures;  // per task whose lines are kept
-  {
-    std::ifstream in(shipped ? kit_.calibration : cache);
-    std::string line;
-    while (std::getline(in, line) && line != "---") {
-      std::istringstream words(line);
-      std::string word, signature;
-      int task = 0;
-      if (words >> word >> task >> signature && word == "task") signatures[task] = signature;
-    }
-    std::string variant, name;
-    double seconds = 0;
-    int task = 0;
-    std::set<int> unmeasured;
-    while (in >> variant >> seconds >> task && std::getline(in, name)) {
-      if (signatures.count(task) > 0) calibration_[variant][name.substr(1)] = {task, seconds};
-      if (seconds <= 0) unmeasured.insert(task);
-    }
-    // A time of 0 is a test that was never run (a cache written under --first-failure by a
-    // grader before issue 27's fix): its task is measured again.
-    if (!shipped)
-      for (const int t : unmeasured)
-        signatures.erase(t);
-  }
+  const CacheContents read = read_cache(shipped ? kit_.calibration : cache);
+  std::map<int, std::string> signatures = read.signatures;  // per task whose lines are kept
+  for (const auto& [variant, tests] : read.times)
+    for (const auto& [name, time] : tests)
+      calibration_[variant][name] = time;
+  // A task with a time of 0 is measured again.
+  if (!shipped)
+    for (const int t : read.unmeasured)
+      signatures.erase(t);
   if (shipped) return true;  // without times, every test gets the floor's ten times (grading.hpp)
   std::vector<int> missing;
   for (const int task : settings_.tasks) {
     const std::string signature = task_signature(kit_, tests_, task);
     if (signatures.count(task) > 0 && signatures[task] == signature) continue;
-    for (auto& [variant, times] : calibration_)
-      std::erase_if(times, [task](const auto& entry) { return entry.second.task == task; });
+    forget_task(calibration_, task);
     signatures[task] = signature;
     missing.push_back(task);
   }
@@ -984,6 +1002,21 @@ bool Grader::calibrate(const fs::path& cache,
         "the kit's own solutions fail tests, so nothing can be graded "
         "fairly (rebuild the kit; if it persists, the kit is broken):" +
         failures);
+  // Another grading may have written the cache since it was read (two started side by side, each
+  // measuring its own tasks): the tasks it holds that this one did not measure are taken as they
+  // are now, so that neither drops the other's. (Only the moment between this reading and the
+  // rename below is left for a third to slip into.)
+  const CacheContents now = read_cache(cache);
+  for (const auto& [task, signature] : now.signatures) {
+    if (std::find(missing.begin(), missing.end(), task) != missing.end() ||
+        now.unmeasured.count(task) > 0)
+      continue;
+    signatures[task] = signature;
+    forget_task(calibration_, task);
+    for (const auto& [variant, tests] : now.times)
+      for (const auto& [name, time] : tests)
+        if (time.task == task) calibration_[variant][name] = time;
+  }
   // Written whole, then renamed: another grader reading it meanwhile sees the old or the new. A
   // cache that cannot be written costs only the measurement again next time.
   std::ostringstream out;

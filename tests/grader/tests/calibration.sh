@@ -18,13 +18,13 @@ cache=$scratch/calibration.txt
 "$grade" --kit "$scratch/kit.toml" --first-failure --tasks 3 --out "$scratch/results" \
   --work "$scratch/work" "$kit/solutions" >"$scratch/log" 2>&1 || fail "the grading failed: exit $?"
 grep -q "measuring the reference's time per test, task 3 " "$scratch/log" || fail "nothing was measured"
-# Every test of task $1 has a time above 0 in both variants.
+# Every test of task $1 has a time above 0 in both variants (in the cache $2, by default $cache).
 all_timed() {
   local tests timed variant
   tests=$("$(dirname "$grade")/springlab-grade-task$1" --list | grep -c . || true)
   [ "$tests" -gt 0 ] || fail "springlab-grade-task$1 --list names no test"
   for variant in plain sanitized; do
-    timed=$(awk -v v="$variant" -v t="$1" '$1 == v && $2 > 0 && $3 == t' "$cache" | wc -l)
+    timed=$(awk -v v="$variant" -v t="$1" '$1 == v && $2 > 0 && $3 == t' "${2:-$cache}" | wc -l)
     [ "$timed" -eq "$tests" ] || fail "$variant: $timed of task $1's $tests tests have a time above 0"
   done
 }
@@ -56,5 +56,28 @@ status=0
   >"$scratch/log" 2>&1 || status=$?
 [ "$status" -eq 1 ] && grep -q "measured but could not be kept in" "$scratch/log" ||
   fail "--calibrate with a cache it cannot write: exit $status"
+# Two gradings side by side, each measuring a task of its own: the one that writes last keeps the
+# other's task. The other's writing is played by putting task 3's lines in the cache while task 2
+# is measured (it prints its first line after reading the cache, and measures for seconds).
+mkdir -p "$scratch/side"
+cp "$scratch/kit.toml" "$scratch/side/kit.toml"
+side=$scratch/side/calibration.txt
+"$grade" --kit "$scratch/side/kit.toml" --calibrate --tasks 2 --work "$scratch/side-work" \
+  >"$scratch/log" 2>&1 &
+measuring=$!
+for _ in $(seq 600); do
+  grep -q "measuring the reference's time per test, task 2 " "$scratch/log" && break
+  kill -0 "$measuring" 2>/dev/null || break
+  sleep 0.1
+done
+grep -q "measuring the reference's time per test, task 2 " "$scratch/log" || fail "task 2 not measured"
+[ ! -e "$side" ] || fail "the side run wrote its cache before measuring"
+{ grep "^task 3 " "$cache"; echo "---"; echo "$task3"; } >"$side.new"
+mv "$side.new" "$side"
+wait "$measuring" || fail "--calibrate --tasks 2 beside another grading failed: exit $?"
+all_timed 2 "$side"
+[ "$(awk '$3 == 3' "$side")" = "$task3" ] && grep -q "^task 3 " "$side" ||
+  fail "a grading measuring task 2 dropped task 3, written meanwhile by another"
 echo "calibration: ok: both variants of every test of tasks 3 (to the first failure) and 2" \
-  "(--calibrate), the others kept, none measured twice, a cache it cannot write an error"
+  "(--calibrate), the others kept (also those written meanwhile), none measured twice, a" \
+  "cache it cannot write an error"
