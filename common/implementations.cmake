@@ -70,7 +70,7 @@ function(springlab_object out ns tree rel)
   endif()
 endfunction()
 
-# Build time (issue 27): each reference file is compiled once per namespace (63 objects in the dev
+# Build time (issue 27): each reference file is compiled once per namespace (54 objects in the dev
 # tree), and parsing Eigen and the standard library was three quarters of each one's time. Objects
 # of one group (the same compiler options) share one precompiled header, made by a target of its
 # own without a namespace: GCC refuses a header made with another SPRINGLAB_IMPL, but takes one
