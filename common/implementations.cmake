@@ -75,6 +75,8 @@ endfunction()
 # of one group (the same compiler options) share one precompiled header, made by a target of its
 # own without a namespace: GCC refuses a header made with another SPRINGLAB_IMPL, but takes one
 # made without it, as the headers it holds never read it. GCC only (Clang refuses both).
+# GCC takes a precompiled header's optimisation options over the file's own: a reference file
+# given options of its own (as the core's -O3 files) must skip it (SKIP_PRECOMPILE_HEADERS).
 function(springlab_share_solutions_pch target group)
   if(NOT SPRINGLAB_PCH OR NOT CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
     return()

@@ -1003,13 +1003,13 @@ bool Grader::calibrate(const fs::path& cache,
         "fairly (rebuild the kit; if it persists, the kit is broken):" +
         failures);
   // Another grading may have written the cache since it was read (two started side by side, each
-  // measuring its own tasks): the tasks it holds that this one did not measure are taken as they
-  // are now, so that neither drops the other's. (Only the moment between this reading and the
-  // rename below is left for a third to slip into.)
+  // measuring its own tasks): the tasks it holds that this one does not grade are written as they
+  // are now, so that neither drops the other's; the tasks this one grades keep the times of its
+  // own programs. (Only the moment between this reading and the rename below is left for another
+  // grading to slip into.)
   const CacheContents now = read_cache(cache);
   for (const auto& [task, signature] : now.signatures) {
-    if (std::find(missing.begin(), missing.end(), task) != missing.end() ||
-        now.unmeasured.count(task) > 0)
+    if (std::ranges::find(saved.tasks, task) != saved.tasks.end() || now.unmeasured.count(task) > 0)
       continue;
     signatures[task] = signature;
     forget_task(calibration_, task);

@@ -3,8 +3,8 @@
 # --first-failure, as the mutants are graded): both runs, plain and sanitized, of every test of the
 # task, none zero; a cache without the sanitized times would give every later sanitized run only
 # the floor's limit. Then --calibrate: it measures another task and keeps the one already there,
-# measures nothing twice, is refused with a submission or a grading's option, and fails when it
-# cannot keep what it measured. With a copy of the build's kit.toml, so that the cache measured
+# measures nothing twice, is refused with a submission or a grading's option, fails when it
+# cannot keep what it measured, and keeps a task another grading wrote while it measured. With a copy of the build's kit.toml, so that the cache measured
 # (calibration.txt beside it) is this test's own.
 # Usage: calibration.sh GRADE KIT SCRATCH
 set -euo pipefail
@@ -65,16 +65,21 @@ side=$scratch/side/calibration.txt
 "$grade" --kit "$scratch/side/kit.toml" --calibrate --tasks 2 --work "$scratch/side-work" \
   >"$scratch/log" 2>&1 &
 measuring=$!
+trap 'kill -CONT "$measuring" 2>/dev/null; kill "$measuring" 2>/dev/null || true' EXIT
 for _ in $(seq 600); do
   grep -q "measuring the reference's time per test, task 2 " "$scratch/log" && break
   kill -0 "$measuring" 2>/dev/null || break
   sleep 0.1
 done
+# Stopped while the other grading writes: its own writing cannot come first, however slow this is.
+kill -STOP "$measuring" 2>/dev/null || fail "the side run ended before task 3's lines were written"
 grep -q "measuring the reference's time per test, task 2 " "$scratch/log" || fail "task 2 not measured"
 [ ! -e "$side" ] || fail "the side run wrote its cache before measuring"
 { grep "^task 3 " "$cache"; echo "---"; echo "$task3"; } >"$side.new"
 mv "$side.new" "$side"
+kill -CONT "$measuring"
 wait "$measuring" || fail "--calibrate --tasks 2 beside another grading failed: exit $?"
+trap - EXIT
 all_timed 2 "$side"
 [ "$(awk '$3 == 3' "$side")" = "$task3" ] && grep -q "^task 3 " "$side" ||
   fail "a grading measuring task 2 dropped task 3, written meanwhile by another"
