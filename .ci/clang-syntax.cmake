@@ -3,6 +3,7 @@
 # Each command is the build's own (defines, include paths, standard) with the compiler swapped
 # for clang++ and no output; GCC-only warning options are ignored and warnings are not errors (the
 # promise is that the kit compiles with Clang; its warnings are the GCC build's business).
+cmake_policy(VERSION 3.25)
 file(READ "${DATABASE}" database)
 string(JSON count LENGTH "${database}")
 math(EXPR last "${count} - 1")
@@ -42,10 +43,21 @@ function(springlab_clang_line directory command entry file)
   set(lines "${lines}" PARENT_SCOPE)
 endfunction()
 
+set(seen "")
 foreach(i RANGE ${last})
   string(JSON entry GET "${database}" ${i} file)
   string(JSON directory GET "${database}" ${i} directory)
   string(JSON command GET "${database}" ${i} command)
+  # A file compiled in several namespaces (each reference file in up to six, implementations.cmake)
+  # differs only in the namespace's name, SPRINGLAB_IMPL: checked once (issue 27: 45 checks
+  # fewer). Any other difference (the implementation table's own definitions) is checked apart.
+  string(REGEX REPLACE " -o [^ ]+" "" same "${command}")
+  string(REGEX REPLACE "-DSPRINGLAB_IMPL=[A-Za-z0-9_]+" "" same "${same}")
+  string(MD5 same "${entry} ${same}")
+  if(same IN_LIST seen)
+    continue()
+  endif()
+  list(APPEND seen ${same})
   # A unity file (SPRINGLAB_UNITY) stands for the sources it includes: each is checked alone, with
   # the unity file's flags, as it is compiled when unity files are off.
   set(files "${entry}")
