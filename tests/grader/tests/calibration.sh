@@ -4,8 +4,9 @@
 # task, none zero; a cache without the sanitized times would give every later sanitized run only
 # the floor's limit. Then --calibrate: it measures another task and keeps the one already there,
 # measures nothing twice, is refused with a submission or a grading's option, fails when it
-# cannot keep what it measured, and keeps a task another grading wrote while it measured. With a copy of the build's kit.toml, so that the cache measured
-# (calibration.txt beside it) is this test's own.
+# cannot keep what it measured, and keeps a task another grading wrote while it measured. With a
+# copy of the build's kit.toml, so that the cache measured (calibration.txt beside it) is this
+# test's own.
 # Usage: calibration.sh GRADE KIT SCRATCH
 set -euo pipefail
 grade=$1 kit=$2 scratch=$3
