@@ -5,6 +5,7 @@
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/stability.hpp"
+#include "symmetric_eigen.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -29,7 +30,7 @@ Deformation deformation_modes(const LinearModel& model) {
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd k = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(k + c);
+  const internal::SymmetricEigen solver = internal::symmetric_eigen(k + c);
   const Eigen::VectorXd& values = solver.eigenvalues();
   const double threshold = 1e-9 * std::max(values.cwiseAbs().maxCoeff(), 1e-300);
   std::vector<Eigen::Index> kept;
@@ -129,7 +130,7 @@ double symplectic_euler_modal_estimate(const LinearModel& model) {
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd k = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(k);
+  const internal::SymmetricEigen solver = internal::symmetric_eigen(k);
   const Eigen::VectorXd damping =
       (solver.eigenvectors().transpose() * c * solver.eigenvectors()).diagonal();
   const double largest = std::max(solver.eigenvalues().maxCoeff(), damping.maxCoeff());

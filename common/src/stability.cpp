@@ -5,6 +5,7 @@
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/verlet_support.hpp"
+#include "symmetric_eigen.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -13,6 +14,11 @@
 #include <limits>
 
 namespace springlab {
+
+internal::SymmetricEigen internal::symmetric_eigen(const Eigen::MatrixXd& m, bool vectors) {
+  return SymmetricEigen(m, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+}
+
 namespace {
 
 // Adds the 2×2 block B of a spring between p and q: +B on the diagonal blocks, -B off them.
@@ -53,8 +59,8 @@ double highest_frequency(const LinearModel& model) {
   if (model.mass.size() == 0) return 0.0;  // every particle pinned: nothing moves
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd scaled = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(scaled, Eigen::EigenvaluesOnly);
-  return std::sqrt(std::max(0.0, solver.eigenvalues().maxCoeff()));
+  return std::sqrt(
+      std::max(0.0, internal::symmetric_eigen(scaled, false).eigenvalues().maxCoeff()));
 }
 
 Eigen::MatrixXd system_matrix(const LinearModel& model) {
@@ -115,8 +121,7 @@ double fastest_damping_rate(const LinearModel& model) {
   if (model.mass.size() == 0) return 0.0;
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(c, Eigen::EigenvaluesOnly);
-  return std::max(0.0, solver.eigenvalues().maxCoeff());
+  return std::max(0.0, internal::symmetric_eigen(c, false).eigenvalues().maxCoeff());
 }
 
 double verlet_iteration_factor() {
