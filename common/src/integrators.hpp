@@ -1,5 +1,6 @@
 // The kit's own integrators (integrator.hpp lists them all with order, cost and step limit),
-// made by name in integrator.cpp. Private to the core library.
+// made by name in integrator.cpp. Private to the core's libraries
+// (springlab_scenes and springlab_core, common/CMakeLists.txt).
 #pragma once
 
 #include "springlab/integrator.hpp"

@@ -1,5 +1,6 @@
 // The derivatives of the spring and damper forces (lecture: Hooke + damper F = -b(v_p - v_q)),
-// shared by the implicit integrators and the stability theory. Private to the core library.
+// shared by the implicit integrators and the stability theory. Private to the core's libraries
+// (springlab_scenes and springlab_core, common/CMakeLists.txt).
 #pragma once
 
 #include "springlab/parallel.hpp"

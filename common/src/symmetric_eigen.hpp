@@ -1,6 +1,7 @@
 // Eigen's symmetric eigensolver, compiled once for the core (in stability.cpp): its templates are
-// the costliest of the core's to compile (about 8 s of GCC at -O2 in each file that instantiates
-// them, several times that under the sanitizers), and two files need it. Private to the core.
+// among the costliest of the core's to compile, and two files need it. Without its own copy,
+// critical_steps.cpp compiles in 10.5 s of GCC at -O2 instead of 17.0 (issue 27). Private to the
+// core.
 #pragma once
 
 #include <Eigen/Eigenvalues>

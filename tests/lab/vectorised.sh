@@ -9,7 +9,7 @@ for name in grid_forces wind_velocities xpbd; do
   for candidate in "$@"; do
     case "$candidate" in */src/$name.cpp.o) object=$candidate ;; esac
   done
-  [ -n "$object" ] || { echo "no object for $name.cpp among the library's"; status=1; continue; }
+  [ -n "$object" ] || { echo "no object for $name.cpp among the libraries'"; status=1; continue; }
   count=$(objdump -d --no-show-raw-insn "$object" | grep -c 'ymm' || true)
   echo "$name.cpp.o: $count instructions on 256-bit registers"
   [ "$count" -gt 0 ] || { echo "$name.cpp was not vectorised for AVX2"; status=1; }
