@@ -4,11 +4,10 @@
 // stability.hpp: a bounded run, or a DivergenceError that says when, where and what; never NaN.
 #include "lab_testing.hpp"
 #include "springlab/diagnostics.hpp"
+#include "springlab/eigen_solvers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/this_implementation.hpp"
-
-#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <optional>
@@ -66,9 +65,7 @@ void check_report(const Outcome& outcome, double h, long steps, int particles) {
 double fastest_damping(const LinearModel& model) {
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(c, Eigen::EigenvaluesOnly)
-      .eigenvalues()
-      .maxCoeff();
+  return solvers::symmetric_eigen(c, false).eigenvalues().maxCoeff();
 }
 
 // Theory's verdict for p at its step: stable below the critical step (and, for Verlet, while

@@ -3,10 +3,9 @@
 // runs on two masses, the 3x3 lab grid and the 10x10 fabric just below and just above each limit.
 #include "springlab/stability.hpp"
 #include "lab_testing.hpp"
+#include "springlab/eigen_solvers.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/this_implementation.hpp"
-
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -60,7 +59,7 @@ const CriticalMode& critical_mode(const std::string& name, double h) {
   if (found != modes.end()) return found->second;
   const LinearModel& model = model_of(name);
   const Eigen::Index n = model.mass.size();
-  const Eigen::EigenSolver<Eigen::MatrixXd> solver(system_matrix(model));
+  const solvers::GeneralEigen solver = solvers::general_eigen(system_matrix(model));
   const Eigen::VectorXcd& lambda = solver.eigenvalues();
   const double largest = lambda.cwiseAbs().maxCoeff();
   Eigen::Index worst = 0;

@@ -1,13 +1,13 @@
 // The step limits of all six integrators (stability.hpp): step matrices of the linear model,
 // bisection on their spectral radius, the per-mode formulas and the report of the runner.
 #include "numbers.hpp"
+#include "springlab/eigen_solvers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/stability.hpp"
-#include "symmetric_eigen.hpp"
 
-#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 
 #include <cmath>
 #include <complex>
@@ -30,7 +30,7 @@ Deformation deformation_modes(const LinearModel& model) {
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd k = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  const internal::SymmetricEigen solver = internal::symmetric_eigen(k + c);
+  const solvers::SymmetricEigen solver = solvers::symmetric_eigen(k + c);
   const Eigen::VectorXd& values = solver.eigenvalues();
   const double threshold = 1e-9 * std::max(values.cwiseAbs().maxCoeff(), 1e-300);
   std::vector<Eigen::Index> kept;
@@ -130,7 +130,7 @@ double symplectic_euler_modal_estimate(const LinearModel& model) {
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd k = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  const internal::SymmetricEigen solver = internal::symmetric_eigen(k);
+  const solvers::SymmetricEigen solver = solvers::symmetric_eigen(k);
   const Eigen::VectorXd damping =
       (solver.eigenvectors().transpose() * c * solver.eigenvectors()).diagonal();
   const double largest = std::max(solver.eigenvalues().maxCoeff(), damping.maxCoeff());

@@ -1,11 +1,11 @@
 #include "springlab/stability.hpp"
 
 #include "spring_matrices.hpp"
+#include "springlab/eigen_solvers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/verlet_support.hpp"
-#include "symmetric_eigen.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -15,8 +15,12 @@
 
 namespace springlab {
 
-internal::SymmetricEigen internal::symmetric_eigen(const Eigen::MatrixXd& m, bool vectors) {
+solvers::SymmetricEigen solvers::symmetric_eigen(const Eigen::MatrixXd& m, bool vectors) {
   return SymmetricEigen(m, vectors ? Eigen::ComputeEigenvectors : Eigen::EigenvaluesOnly);
+}
+
+solvers::GeneralEigen solvers::general_eigen(const Eigen::MatrixXd& m, bool vectors) {
+  return GeneralEigen(m, vectors);
 }
 
 namespace {
@@ -59,8 +63,7 @@ double highest_frequency(const LinearModel& model) {
   if (model.mass.size() == 0) return 0.0;  // every particle pinned: nothing moves
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd scaled = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
-  return std::sqrt(
-      std::max(0.0, internal::symmetric_eigen(scaled, false).eigenvalues().maxCoeff()));
+  return std::sqrt(std::max(0.0, solvers::symmetric_eigen(scaled, false).eigenvalues().maxCoeff()));
 }
 
 Eigen::MatrixXd system_matrix(const LinearModel& model) {
@@ -96,7 +99,7 @@ Eigen::VectorXcd balanced_eigenvalues(Eigen::MatrixXd a) {
       }
     }
   }
-  return Eigen::EigenSolver<Eigen::MatrixXd>(a, false).eigenvalues();
+  return solvers::general_eigen(a, false).eigenvalues();
 }
 
 Eigen::VectorXcd system_eigenvalues(const LinearModel& model) {
@@ -121,7 +124,7 @@ double fastest_damping_rate(const LinearModel& model) {
   if (model.mass.size() == 0) return 0.0;
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  return std::max(0.0, internal::symmetric_eigen(c, false).eigenvalues().maxCoeff());
+  return std::max(0.0, solvers::symmetric_eigen(c, false).eigenvalues().maxCoeff());
 }
 
 double verlet_iteration_factor() {

@@ -1,8 +1,9 @@
 #include "probes.hpp"
+#include "least_squares.hpp"
 
 #include "springlab/parameters.hpp"
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
@@ -121,7 +122,7 @@ std::optional<Law> law_in_length(const std::vector<double>& lengths,
     y[long(i)] = values[i];
     if (!std::isfinite(values[i])) return std::nullopt;
   }
-  Law c = a.colPivHouseholderQr().solve(y);
+  Law c = least_squares(a, y);
   if ((a * c - y).norm() > 1e-7 * (1.0 + y.norm())) return std::nullopt;
   for (int i = 0; i < length_terms; ++i)
     if (std::abs(c[i]) < 1e-9 * (1.0 + y.norm())) c[i] = 0.0;
@@ -301,7 +302,7 @@ std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
   const auto fit = [](const Vec2& got, const Vec2& s, const Vec2& d) {
     Eigen::Matrix2d basis;
     basis << s, d;
-    const Eigen::Vector2d c = basis.colPivHouseholderQr().solve(got);
+    const Eigen::Vector2d c = least_squares(basis, got);
     return Fitted{c[0], c[1], (basis * c - got).norm() <= 1e-9 * (1.0 + got.norm())};
   };
   std::vector<Fitted> on_p, on_q;
@@ -582,7 +583,7 @@ std::string probe_verlet_step(const VerletStep& step) {
     // Split the move along v_0 = (0, 1) and along A: two unknowns, two components.
     Eigen::Matrix2d basis;
     basis << Vec2(0.0, h), Vec2(h * h * A);
-    const Eigen::Vector2d c = basis.colPivHouseholderQr().solve(moved);
+    const Eigen::Vector2d c = least_squares(basis, moved);
     if (!near(c[0], 1.0) || !near(c[1], 0.5)) {
       std::ostringstream out;
       out << "the first step (no history) moves r_0 by "

@@ -1,6 +1,7 @@
 #include "spring_lists.hpp"
+#include "least_squares.hpp"
 
-#include <Eigen/Dense>
+#include <Eigen/Core>
 
 #include <algorithm>
 #include <cmath>
@@ -192,7 +193,7 @@ std::string count_formula(const std::function<double(int, int)>& count) {
     y[long(i)] = count(r, c);
     if (std::isnan(y[long(i)])) return "";
   }
-  const Eigen::Vector4d x = a.colPivHouseholderQr().solve(y);
+  const Eigen::Vector4d x = least_squares(a, y);
   if ((a * x - y).norm() > 1e-6) return "";
   std::ostringstream text;
   const char* terms[] = {"rc", "r", "c", ""};

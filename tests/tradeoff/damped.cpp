@@ -4,12 +4,11 @@
 // whatever the damping, until its iteration's factor h c/2 nears 0.76. The scene's step lies
 // between the two.
 #include "measure.hpp"
+#include "springlab/eigen_solvers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/stability.hpp"
 #include "textbook_verlet.hpp"
-
-#include <Eigen/Eigenvalues>
 
 #include <cmath>
 #include <filesystem>
@@ -62,7 +61,7 @@ DampedScene damped_scene(const StudyOptions& options) {
   const Eigen::VectorXd scale = model.mass.cwiseSqrt().cwiseInverse();
   const Eigen::MatrixXd k = scale.asDiagonal() * model.stiffness * scale.asDiagonal();
   const Eigen::MatrixXd c = scale.asDiagonal() * model.damping * scale.asDiagonal();
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes(k);
+  const solvers::SymmetricEigen modes = solvers::symmetric_eigen(k);
   const Eigen::Index top = modes.eigenvalues().size() - 1;
   d.omega_max = std::sqrt(modes.eigenvalues()[top]);
   const Eigen::VectorXd psi = modes.eigenvectors().col(top);
