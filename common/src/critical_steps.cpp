@@ -36,7 +36,10 @@ Deformation deformation_modes(const LinearModel& model) {
   std::vector<Eigen::Index> kept;
   for (Eigen::Index i = 0; i < values.size(); ++i)
     if (values[i] > threshold) kept.push_back(i);
-  const Eigen::MatrixXd basis = solver.eigenvectors()(Eigen::all, kept);
+  // Column by column: the name of "every row" differs between Eigen 3.4 and 5 (issue 36).
+  Eigen::MatrixXd basis(values.size(), Eigen::Index(kept.size()));
+  for (std::size_t j = 0; j < kept.size(); ++j)
+    basis.col(Eigen::Index(j)) = solver.eigenvectors().col(kept[j]);
   Eigen::MatrixXd drag = Eigen::MatrixXd::Zero(k.rows(), k.cols());
   if (model.drag.size() == model.mass.size())
     drag.diagonal() = model.drag.cwiseProduct(scale.cwiseAbs2());
