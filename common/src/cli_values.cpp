@@ -1,6 +1,7 @@
 #include "springlab/cli_values.hpp"
 
 #include "springlab/errors.hpp"
+#include "springlab/real_text.hpp"
 #include "springlab/scene_text.hpp"
 
 #include <cerrno>
@@ -18,15 +19,14 @@ double option_number(std::string_view option, std::string_view text, const Range
   // "+2" is a number to a person; from_chars takes only "-" for a sign.
   std::string_view digits = text;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);
-  double value = 0.0;
-  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (!digits.empty() && error == std::errc::result_out_of_range &&
-      end == digits.data() + digits.size())
+  const RealText real = parse_real(digits);
+  if (real.error == std::errc::result_out_of_range)
     throw InvalidParameter(std::string(option), shown,
                            "beyond the range of a double; allowed " + range.describe(name, unit));
-  if (digits.empty() || error != std::errc{} || end != digits.data() + digits.size())
+  if (real.error != std::errc{})
     throw InvalidParameter(std::string(option), shown,
                            "not a number; allowed " + range.describe(name, unit));
+  const double value = real.value;
   if (!range.contains(value))
     throw InvalidParameter(std::string(option), shown, "allowed " + range.describe(name, unit));
   return value;

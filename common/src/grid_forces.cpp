@@ -1,5 +1,6 @@
 #include "springlab/grid_forces.hpp"
 
+#include "springlab/avx2.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/parallel.hpp"
 
@@ -40,13 +41,13 @@ struct LinkTerms {
 }
 
 // The kernels: each a clone for AVX2 (four doubles a vector, chosen at load time on processors
-// that have it) beside the SSE2 one; neither contracts to fused multiply-adds, so both give the
-// same bits.
+// that have it, springlab/avx2.hpp) beside the baseline one; neither contracts to fused
+// multiply-adds, so both give the same bits.
 
 // Each spring's and damper's force together on the first ends of `count` springs, into f.
-__attribute__((target_clones("avx2", "default"))) void link_row(
-    double k, double b, double rest_length, const double* __restrict rp,
-    const double* __restrict vp, long offset, int count, double* __restrict f) {
+SPRINGLAB_AVX2_CLONES void link_row(double k, double b, double rest_length,
+                                    const double* __restrict rp, const double* __restrict vp,
+                                    long offset, int count, double* __restrict f) {
   for (int j = 0; j < count; ++j) {
     const LinkTerms t = link_terms(k, b, rest_length, rp, rp + 2 * offset, vp, vp + 2 * offset, j);
     f[2 * j] = t.spring_x + t.damper_x;
@@ -57,10 +58,10 @@ __attribute__((target_clones("avx2", "default"))) void link_row(
 // The same added straight to p's sums and taken from q's, for links to another row (di > 0),
 // whose two runs of sums never overlap: the same additions in the same order as link_row
 // followed by add and subtract, without the round trip through a buffer.
-__attribute__((target_clones("avx2", "default"))) void link_row_into(
-    double k, double b, double rest_length, const double* __restrict rp,
-    const double* __restrict vp, long offset, int count, double* __restrict p_sums,
-    double* __restrict q_sums) {
+SPRINGLAB_AVX2_CLONES void link_row_into(double k, double b, double rest_length,
+                                         const double* __restrict rp, const double* __restrict vp,
+                                         long offset, int count, double* __restrict p_sums,
+                                         double* __restrict q_sums) {
   for (int j = 0; j < count; ++j) {
     const LinkTerms t = link_terms(k, b, rest_length, rp, rp + 2 * offset, vp, vp + 2 * offset, j);
     const double fx = t.spring_x + t.damper_x, fy = t.spring_y + t.damper_y;
@@ -72,10 +73,10 @@ __attribute__((target_clones("avx2", "default"))) void link_row_into(
 }
 
 // The two apart: the springs' forces in f, the dampers' in d.
-__attribute__((target_clones("avx2", "default"))) void link_row_apart(
-    double k, double b, double rest_length, const double* __restrict rp,
-    const double* __restrict vp, long offset, int count, double* __restrict f,
-    double* __restrict d) {
+SPRINGLAB_AVX2_CLONES void link_row_apart(double k, double b, double rest_length,
+                                          const double* __restrict rp, const double* __restrict vp,
+                                          long offset, int count, double* __restrict f,
+                                          double* __restrict d) {
   for (int j = 0; j < count; ++j) {
     const LinkTerms t = link_terms(k, b, rest_length, rp, rp + 2 * offset, vp, vp + 2 * offset, j);
     f[2 * j] = t.spring_x;
@@ -86,10 +87,8 @@ __attribute__((target_clones("avx2", "default"))) void link_row_apart(
 }
 
 // The dampers alone, as in link_row_apart.
-__attribute__((target_clones("avx2", "default"))) void damper_row(double b,
-                                                                  const double* __restrict v,
-                                                                  long first, long offset,
-                                                                  int count, double* __restrict d) {
+SPRINGLAB_AVX2_CLONES void damper_row(double b, const double* __restrict v, long first, long offset,
+                                      int count, double* __restrict d) {
   const double* vp = v + 2 * first;
   const double* vq = vp + 2 * offset;
   for (int e = 0; e < 2 * count; ++e)
@@ -98,11 +97,9 @@ __attribute__((target_clones("avx2", "default"))) void damper_row(double b,
 
 // The energies ½ k (L − ℓ0)² (whose negative gradient is (1.1)) of `count` springs of one row of a
 // link, as link_row.
-__attribute__((target_clones("avx2", "default"))) void link_energy_row(double k, double rest_length,
-                                                                       const double* __restrict r,
-                                                                       long first, long offset,
-                                                                       int count,
-                                                                       double* __restrict e) {
+SPRINGLAB_AVX2_CLONES void link_energy_row(double k, double rest_length, const double* __restrict r,
+                                           long first, long offset, int count,
+                                           double* __restrict e) {
   const double* rp = r + 2 * first;
   const double* rq = rp + 2 * offset;
   for (int j = 0; j < count; ++j) {
@@ -169,9 +166,8 @@ template <bool Springs, bool Gravity, bool Wind>
     f[e] = f[e + 1] = 0.0;
   }
 }
-__attribute__((target_clones("avx2", "default"))) void end_row(const RowEnd& end, bool gravity,
-                                                               int width, double* __restrict f,
-                                                               double* __restrict a) {
+SPRINGLAB_AVX2_CLONES void end_row(const RowEnd& end, bool gravity, int width, double* __restrict f,
+                                   double* __restrict a) {
   switch (4 * (end.springs != nullptr) + 2 * gravity + (end.wind != nullptr)) {
     case 0:
       return end_row<false, false, false>(end, width, f, a);

@@ -4,9 +4,17 @@
 #include "springlab/grid_forces.hpp"
 #include "springlab/parallel.hpp"
 
+// What the system says of memory: Linux's /proc and cgroups, POSIX's limits and page counts,
+// Windows' own call; where a source does not exist (/proc on macOS) it limits nothing.
+#if defined(_WIN32)
+#define NOMINMAX
+#define WIN32_LEAN_AND_MEAN
+#include <windows.h>
+#else
 #include <pthread.h>
 #include <sys/resource.h>
 #include <unistd.h>
+#endif
 
 #include <algorithm>
 #include <cctype>
@@ -93,12 +101,14 @@ double one_thread_stack_bytes() {
   if (!bytes) bytes = stack_setting(std::getenv("GOMP_STACKSIZE"));
   if (!bytes) {
     bytes = 8 * mib;  // glibc's default when it cannot say
+#if defined(__GLIBC__)
     pthread_attr_t attr;
     if (pthread_getattr_default_np(&attr) == 0) {
       std::size_t size = 0;
       if (pthread_attr_getstacksize(&attr, &size) == 0 && size > 0) bytes = double(size);
       pthread_attr_destroy(&attr);
     }
+#endif
   }
   return *bytes + 4 * kib;
 }
@@ -156,7 +166,20 @@ double proc_field(const std::string& file, const std::string& field) {
   return 0.0;
 }
 
-double rlimit_available(int resource, const std::string& in_use_field) {
+#if defined(_WIN32)
+enum Resource { address_space_limit, data_limit };
+double rlimit_available(Resource, const std::string&) {
+  return unlimited;  // Windows has no ulimit
+}
+
+double physical_available() {
+  MEMORYSTATUSEX status{};
+  status.dwLength = sizeof status;
+  return GlobalMemoryStatusEx(&status) != 0 ? double(status.ullAvailPhys) : unlimited;
+}
+#else
+enum Resource { address_space_limit = RLIMIT_AS, data_limit = RLIMIT_DATA };
+double rlimit_available(Resource resource, const std::string& in_use_field) {
   rlimit limit{};
   if (getrlimit(resource, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return unlimited;
   return double(limit.rlim_cur) - proc_field("/proc/self/status", in_use_field);
@@ -168,6 +191,7 @@ double physical_available() {
   const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGE_SIZE);
   return pages > 0 && page > 0 ? double(pages) * double(page) / 2 : unlimited;
 }
+#endif
 
 std::string mebibytes(double bytes) {
   std::ostringstream out;
@@ -192,8 +216,8 @@ MemoryLimit available_memory() {
   const auto consider = [&](double bytes, const char* source) {
     if (bytes < best.bytes) best.bytes = bytes, best.source = source;
   };
-  const double address_space = rlimit_available(RLIMIT_AS, "VmSize");
-  const double data = rlimit_available(RLIMIT_DATA, "VmData");
+  const double address_space = rlimit_available(address_space_limit, "VmSize");
+  const double data = rlimit_available(data_limit, "VmData");
   consider(address_space, "ulimit -v");
   consider(data, "ulimit -d");
   consider(cgroup_available(), "cgroup");

@@ -75,7 +75,7 @@ double add_blocks(long n, double (*call)(void* term, long begin, long end), void
   const auto block = [&](long b) {
     sums[std::size_t(b)] = call(term, b * sum_block, std::min(n, (b + 1) * sum_block));
   };
-  const int threads = n >= parallel_items ? thread_count() : 1;
+  [[maybe_unused]] const int threads = n >= parallel_items ? thread_count() : 1;
 #ifdef _OPENMP
 #pragma omp parallel for schedule(static) num_threads(threads) if (threads > 1)
 #endif

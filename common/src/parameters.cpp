@@ -3,10 +3,9 @@
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/memory_budget.hpp"
+#include "springlab/real_text.hpp"
 #include "springlab/scene_text.hpp"
 #include "springlab/selection.hpp"
-
-#include <unistd.h>
 
 #include <algorithm>
 #include <charconv>
@@ -102,10 +101,10 @@ std::string overview() {
 // NaN and infinities come back as parsed, for the range check to refuse them as written.
 // Returns "" when it is a number, else what is wrong with the text.
 std::string parse_number(std::string_view text, double& out) {
-  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-  if (end != text.data() + text.size() || error == std::errc::invalid_argument)
-    return "not a number";
-  if (error == std::errc::result_out_of_range) return "beyond the range of a double";
+  const RealText real = parse_real(text);
+  if (real.error == std::errc::invalid_argument) return "not a number";
+  if (real.error == std::errc::result_out_of_range) return "beyond the range of a double";
+  out = real.value;
   return "";
 }
 

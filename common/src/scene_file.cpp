@@ -5,11 +5,9 @@
 
 #include <toml++/toml.h>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -217,20 +215,23 @@ SceneParameters load_scene_file(const std::string& path) {
     throw InvalidParameter("scene", quoted_for_terminal(path),
                            "a scene file of at most " + std::to_string(max_scene_file_bytes) +
                                " bytes; this one has " + std::to_string(size));
-  // Read with the system's own calls: a stream says nothing of a read that failed midway (a
-  // file of /proc, a disk error) and would hand on an empty or cut text as the scene.
-  const int file = open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (file < 0)
+  // Read with C's calls, whose ferror tells a read that failed midway (a file of /proc, a disk
+  // error): a stream says nothing of it and would hand on an empty or cut text as the scene.
+  errno = 0;
+  std::FILE* file = std::fopen(path.c_str(), "rb");
+  if (file == nullptr)
     throw InvalidParameter("scene", quoted_for_terminal(path),
                            std::string("a readable scene file (") + std::strerror(errno) + ")");
   std::string text;
   char buffer[8192];
-  ssize_t got = 0;
-  while ((got = read(file, buffer, sizeof buffer)) > 0 && text.size() <= max_scene_file_bytes)
-    text.append(buffer, std::size_t(got));
+  std::size_t got = 0;
+  while ((got = std::fread(buffer, 1, sizeof buffer, file)) > 0 &&
+         text.size() <= max_scene_file_bytes)
+    text.append(buffer, got);
   const int reason = errno;
-  close(file);
-  if (got < 0)
+  const bool failed = std::ferror(file) != 0;
+  std::fclose(file);
+  if (failed)
     throw InvalidParameter("scene", quoted_for_terminal(path),
                            std::string("a readable scene file (") + std::strerror(reason) + ")");
   if (text.size() > max_scene_file_bytes)  // a file that grew, or reports no size (a pipe)

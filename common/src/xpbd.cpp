@@ -36,6 +36,7 @@
 // the same result. A projection's denominators depend only on s, k, b and the ends' masses: they
 // are computed once for each kind of spring, not per projection.
 #include "integrators.hpp"
+#include "springlab/avx2.hpp"
 #include "springlab/parallel.hpp"
 
 #include <algorithm>
@@ -49,7 +50,9 @@
 #include <string_view>
 #include <vector>
 
+#if SPRINGLAB_AVX2_PATHS
 #include <immintrin.h>
+#endif
 
 namespace springlab::detail {
 namespace {
@@ -94,11 +97,13 @@ struct Chunk {
 // The file's step 2 for `count` gathered constraints of kind c, as project_range below writes it
 // for one. At zero length there is no direction, as (1.1) says: dividing by infinity gives n = 0,
 // so no move (c = 0), and the caller keeps λ and μ as they were.
-__attribute__((target_clones("avx2", "default"))) void project_chunk(
-    int count, const Kind c, const double* __restrict dx, const double* __restrict dy,
-    const double* __restrict mx, const double* __restrict my, const double* __restrict lambda,
-    const double* __restrict mu, double* __restrict along_out, double* __restrict across_out,
-    double* __restrict cx, double* __restrict cy) {
+SPRINGLAB_AVX2_CLONES void project_chunk(int count, const Kind c, const double* __restrict dx,
+                                         const double* __restrict dy, const double* __restrict mx,
+                                         const double* __restrict my,
+                                         const double* __restrict lambda,
+                                         const double* __restrict mu, double* __restrict along_out,
+                                         double* __restrict across_out, double* __restrict cx,
+                                         double* __restrict cy) {
   for (int j = 0; j < count; ++j) {
     const double length = std::sqrt(dx[j] * dx[j] + dy[j] * dy[j]);
     const double inverse_length = 1.0 / (length > 0.0 ? length : infinity);
@@ -113,6 +118,7 @@ __attribute__((target_clones("avx2", "default"))) void project_chunk(
   }
 }
 
+#if SPRINGLAB_AVX2_PATHS
 // Four projections of one colour and one kind at once, with AVX2 (the file's step 2, the same
 // operations in the same order as project_range, so the same bits): each end's x, y, and substep
 // start x0, y0 are one 32-byte load; four constraints' separations and relative moves are turned
@@ -173,6 +179,7 @@ __attribute__((target("avx2"))) void project_four(double* x, const Ends* c, cons
     _mm_storeu_pd(xq, _mm_sub_pd(_mm_loadu_pd(xq), _mm_mul_pd(wq, move[i])));
   }
 }
+#endif
 
 class Xpbd final : public Integrator {
  public:
@@ -351,9 +358,13 @@ class Xpbd final : public Integrator {
   void project_fours(long begin, long end, const Kind& k) {
     double* x = state_.data();
     long i = begin;
+#if SPRINGLAB_AVX2_PATHS
     for (; i + 4 <= end; i += 4)
       project_four(x, ends_.data() + i, k, accumulate ? lambda_.data() + i : nullptr,
                    accumulate ? mu_.data() + i : nullptr);
+#else
+    (void)x;              // chosen_path() never picks this path here
+#endif
     project_range<accumulate>(i, end, k);
   }
 
@@ -439,8 +450,12 @@ class Xpbd final : public Integrator {
     const char* asked = std::getenv("SPRINGLAB_XPBD_PATH");
     const std::string_view name = asked ? asked : "";
     if (name == "one") return Path::one;
+#if SPRINGLAB_AVX2_PATHS
     if (name == "chunks" || !__builtin_cpu_supports("avx2")) return Path::chunks;
     return Path::four;
+#else
+    return Path::chunks;  // no four-at-a-time path on this processor or system (avx2.hpp)
+#endif
   }
   std::vector<long> group_start_;       // colour c is [start[c], start[c + 1])
   bool last_group_sequential_ = false;  // the last group is not a colour (see prepare)
