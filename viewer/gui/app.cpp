@@ -12,15 +12,10 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 
 namespace springlab::view {
 namespace {
-
-sf::ContextSettings context() {
-  sf::ContextSettings settings;
-  settings.antialiasingLevel = 0;  // identical pixels on every machine, and cheap in software
-  return settings;
-}
 
 // A "1 m"-style scale bar: the largest 1, 2 or 5 × 10^k metres under 120 pixels.
 double scale_bar_metres(double pixels_per_metre) {
@@ -35,8 +30,9 @@ double scale_bar_metres(double pixels_per_metre) {
 
 App::App(const AppOptions& options)
     : options_(options),
-      window_(sf::VideoMode(options.width, options.height), "springlab viewer", sf::Style::Default,
-              context()),
+      // SFML's default context has no antialiasing: identical pixels on every machine, and cheap
+      // in software.
+      window_(compat::video_mode({options.width, options.height}), "springlab viewer"),
       glue_(window_),
       session_(options.scene) {
   const bool thread = options.stepping == Stepping::thread ||
@@ -89,19 +85,22 @@ void App::finish_stepping() {
 }
 
 void App::handle(const sf::Event& event) {
+  using Kind = compat::Input::Kind;
   finish_stepping();  // an event may edit the session or read its particles
-  glue_.handle(event);
-  switch (event.type) {
-    case sf::Event::Closed:
+  const compat::Input input = compat::read(event);
+  glue_.handle(input);
+  const bool shift_key =
+      input.key == sf::Keyboard::Key::LShift || input.key == sf::Keyboard::Key::RShift;
+  switch (input.kind) {
+    case Kind::closed:
       window_.close();
       break;
-    case sf::Event::Resized:
-      window_.setView(
-          sf::View(sf::FloatRect(0, 0, float(event.size.width), float(event.size.height))));
+    case Kind::resized:
+      window_.setView(sf::View(compat::float_rect(0, 0, float(input.size.x), float(input.size.y))));
       fit();
       break;
-    case sf::Event::MouseMoved: {
-      const sf::Vector2f now(float(event.mouseMove.x), float(event.mouseMove.y));
+    case Kind::mouse_moved: {
+      const sf::Vector2f now(float(input.position.x), float(input.position.y));
       if (session_.grabbed() >= 0 && view_at(now) >= 0)
         session_.drag_to(cameras_[std::size_t(view_at(now))].to_world(now));
       else if (panning_)
@@ -110,68 +109,67 @@ void App::handle(const sf::Event& event) {
       mouse_ = now;
       break;
     }
-    case sf::Event::MouseButtonPressed:
-      mouse_ = sf::Vector2f(float(event.mouseButton.x), float(event.mouseButton.y));
-      if (!glue_.wants_mouse()) on_press(event.mouseButton);
+    case Kind::button_pressed:
+      mouse_ = sf::Vector2f(float(input.position.x), float(input.position.y));
+      if (!glue_.wants_mouse()) on_press(input.button);
       break;
-    case sf::Event::MouseButtonReleased:
-      if (event.mouseButton.button == sf::Mouse::Left) {
+    case Kind::button_released:
+      if (input.button == sf::Mouse::Button::Left) {
         session_.release();
         panning_ = false;
       }
       break;
-    case sf::Event::MouseWheelScrolled:
+    case Kind::wheel:
       if (!glue_.wants_mouse() && view_at(mouse_) >= 0)
         for (Camera& camera : cameras_)
-          camera.zoom(std::pow(1.15, double(event.mouseWheelScroll.delta)), mouse_);
+          camera.zoom(std::pow(1.15, double(input.delta)), mouse_);
       break;
-    case sf::Event::KeyPressed:
-      if (event.key.code == sf::Keyboard::LShift || event.key.code == sf::Keyboard::RShift)
+    case Kind::key_pressed:
+      if (shift_key)
         shift_ = true;
       else if (!glue_.wants_keyboard())
-        on_key(event.key.code);
+        on_key(input.key);
       break;
-    case sf::Event::KeyReleased:
-      if (event.key.code == sf::Keyboard::LShift || event.key.code == sf::Keyboard::RShift)
-        shift_ = false;
+    case Kind::key_released:
+      if (shift_key) shift_ = false;
       break;
     default:
       break;
   }
 }
 
-void App::on_press(const sf::Event::MouseButtonEvent& button) {
+void App::on_press(sf::Mouse::Button button) {
   const int view = view_at(mouse_);
   const Simulation* sim = view >= 0 ? simulation_of(view) : nullptr;
   if (!sim) return;
   const Camera& camera = cameras_[std::size_t(view)];
   const int particle = particle_at(*sim, camera, mouse_);
   if (particle >= 0) settings_.selected = particle;
-  if (button.button == sf::Mouse::Right && particle >= 0) {
+  if (button == sf::Mouse::Button::Right && particle >= 0) {
     session_.toggle_pin(particle);
-  } else if (button.button == sf::Mouse::Left && particle >= 0 && shift_) {
+  } else if (button == sf::Mouse::Button::Left && particle >= 0 && shift_) {
     session_.push(particle, settings_.push_velocity);
-  } else if (button.button == sf::Mouse::Left && particle >= 0) {
+  } else if (button == sf::Mouse::Button::Left && particle >= 0) {
     session_.grab(particle);
     session_.drag_to(camera.to_world(mouse_));
-  } else if (button.button == sf::Mouse::Left) {
+  } else if (button == sf::Mouse::Button::Left) {
     panning_ = true;
   }
 }
 
 void App::on_key(sf::Keyboard::Key key) {
   switch (key) {
-    case sf::Keyboard::Space:
+    case sf::Keyboard::Key::Space:
       session_.set_running(!session_.running());
       break;
-    case sf::Keyboard::S:
-    case sf::Keyboard::Right:
+    case sf::Keyboard::Key::S:
+    case sf::Keyboard::Key::Right:
       session_.single_step();
       break;
-    case sf::Keyboard::R:
+    case sf::Keyboard::Key::R:
       session_.reset();
       break;
-    case sf::Keyboard::F:
+    case sf::Keyboard::Key::F:
       fit();
       break;
     default:
@@ -200,9 +198,8 @@ void App::frame(bool capture) {
     }
     launched_steps_ = 0;
   }
-  sf::Event event;
-  while (window_.pollEvent(event))
-    handle(event);
+  while (const std::optional<sf::Event> event = compat::poll(window_))
+    handle(*event);
   if (!window_.isOpen()) return;
   info_.frame_seconds = clock_.restart().asSeconds();
   glue_.new_frame(options_.fixed_frame_time ? 1.0f / 60.0f : float(info_.frame_seconds));
@@ -241,9 +238,12 @@ void App::frame(bool capture) {
   phases.imgui = lap();
   if (capture) {
     sf::Texture texture;
-    texture.create(window_.getSize().x, window_.getSize().y);
-    texture.update(window_);
-    captured_ = texture.copyToImage();
+    if (compat::resize(texture, window_.getSize())) {
+      texture.update(window_);
+      captured_ = texture.copyToImage();
+    } else {
+      captured_ = sf::Image();
+    }
   }
   window_.display();
   phases.display = lap();
@@ -294,9 +294,9 @@ void App::draw_scenes() {
     const Camera& camera = cameras_[std::size_t(v)];
     const Viewport& area = camera.viewport();
     // A view per viewport clips each run to its half in side-by-side mode.
-    sf::View clip(sf::FloatRect(area.left, area.top, area.width, area.height));
-    clip.setViewport(sf::FloatRect(area.left / float(size.x), area.top / float(size.y),
-                                   area.width / float(size.x), area.height / float(size.y)));
+    sf::View clip(compat::float_rect(area.left, area.top, area.width, area.height));
+    clip.setViewport(compat::float_rect(area.left / float(size.x), area.top / float(size.y),
+                                        area.width / float(size.x), area.height / float(size.y)));
     window_.setView(clip);
     DrawOptions options = settings_.draw;
     if (v == 0 && plan_.ghost.sim) {

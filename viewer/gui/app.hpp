@@ -19,6 +19,7 @@
 #include <SFML/Graphics/Image.hpp>
 #include <SFML/Graphics/RenderWindow.hpp>
 #include <SFML/System/Clock.hpp>
+#include <SFML/Window/Event.hpp>
 
 #include <array>
 #include <memory>
@@ -81,7 +82,7 @@ class App {
   void plan_drawing();
   void draw_scenes();
   void draw_labels();
-  void on_press(const sf::Event::MouseButtonEvent& button);
+  void on_press(sf::Mouse::Button button);
   void on_key(sf::Keyboard::Key key);
 
   AppOptions options_;

@@ -4,10 +4,11 @@
 // one global context).
 #pragma once
 
-#include <SFML/Graphics/RenderWindow.hpp>
-#include <SFML/Window/Event.hpp>
+#include "gui/sfml_compat.hpp"
 
-#include <array>
+#include <SFML/Graphics/RenderWindow.hpp>
+
+#include <string>
 
 namespace springlab::view {
 
@@ -19,7 +20,7 @@ class ImGuiGlue {
   ImGuiGlue& operator=(const ImGuiGlue&) = delete;
 
   /// Passes one event (real or synthetic) to ImGui.
-  void handle(const sf::Event& event);
+  void handle(const compat::Input& event);
   /// Starts an ImGui frame that lasts `seconds`; widgets may be declared until render().
   void new_frame(float seconds);
   /// Draws the frame's widgets over whatever SFML has drawn.
@@ -27,14 +28,12 @@ class ImGuiGlue {
 
   bool wants_mouse() const;     ///< the mouse is over (or dragging) a widget
   bool wants_keyboard() const;  ///< a text field has the keyboard
+  /// The TrueType file the panel's text is drawn with; empty: ImGui's own font (none found).
+  const std::string& font_file() const { return font_file_; }
 
  private:
-  static constexpr std::size_t buttons = 3;  // left, right, middle
   sf::RenderWindow& window_;
-  std::array<bool, buttons> down_{};
-  // A press and its release can arrive within one frame: the press is latched so ImGui still
-  // sees the button down for one frame and registers the click.
-  std::array<bool, buttons> pressed_{};
+  std::string font_file_;
 };
 
 }  // namespace springlab::view

@@ -5,6 +5,7 @@
 // open a window on.
 #include "gui/app.hpp"
 #include "gui/display.hpp"
+#include "gui/platform.hpp"
 #include "gui/runs.hpp"
 #include "springlab/cli_values.hpp"
 #include "springlab/errors.hpp"
@@ -16,18 +17,11 @@
 
 #include <CLI/CLI.hpp>
 
-#include <fcntl.h>
-#include <malloc.h>
-#include <sys/resource.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
-#include <csignal>
+#include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -115,8 +109,7 @@ void read_numbers(Options& options) {
 void check_folder(const char* option, const std::string& path,
                   const std::filesystem::path& folder) {
   const std::filesystem::path where = folder.empty() ? "." : folder;
-  std::error_code error;
-  if (!std::filesystem::is_directory(where, error) || access(where.c_str(), W_OK) != 0)
+  if (!platform::can_write_in(where))
     throw InvalidParameter(
         option, quoted_for_terminal(path),
         "a path in a folder that exists and can be written (" + where.string() + " is not)");
@@ -126,16 +119,9 @@ void check_folder(const char* option, const std::string& path,
 // rather than after the last (where SFML's "Failed to save image" did not name the option). A
 // file there already is opened without being truncated; one made for the proof is removed again.
 void check_writable(const char* option, const std::string& path) {
-  const int flags = O_WRONLY | O_NONBLOCK | O_CLOEXEC;  // O_NONBLOCK: a FIFO does not hang here
-  int fd = open(path.c_str(), flags | O_CREAT | O_EXCL, 0666);
-  const bool made = fd >= 0;
-  if (!made && errno == EEXIST) fd = open(path.c_str(), flags);
-  if (fd < 0)
-    throw InvalidParameter(
-        option, quoted_for_terminal(path),
-        std::string("a file that can be written (") + std::strerror(errno) + ")");
-  close(fd);
-  if (made) unlink(path.c_str());
+  if (const std::string why = platform::probe_writable(path); !why.empty())
+    throw InvalidParameter(option, quoted_for_terminal(path),
+                           "a file that can be written (" + why + ")");
 }
 
 // --screenshot and --record, checked before the first frame rather than after the last.
@@ -187,14 +173,13 @@ constexpr double window_address_space = 270 * mib, window_memory = 96 * mib, mar
 // corrupted heap, not a message. The scene's own estimate comes on top of the window's.
 void check_window_memory(const SceneParameters& p) {
   const double scene = estimated_bytes(p);
-  rlimit address_space{};
-  if (getrlimit(RLIMIT_AS, &address_space) == 0 && address_space.rlim_cur != RLIM_INFINITY) {
+  if (const std::optional<double> address_space = platform::address_space_limit()) {
     const double needed =
         address_space_in_use() + window_address_space + margin + scene + thread_stack_bytes(p);
-    if (needed > double(address_space.rlim_cur))
+    if (needed > *address_space)
       throw Refused("the window needs " + mebibytes_text(needed) +
                     " of address space; the limit is " +
-                    std::to_string(std::llround(double(address_space.rlim_cur) / mib)) + " MiB" +
+                    std::to_string(std::llround(*address_space / mib)) + " MiB" +
                     " (ulimit -v): raise the limit, or run springlab-run, which needs no window");
   }
   const MemoryLimit limit = available_memory();
@@ -211,7 +196,7 @@ void check_window_memory(const SceneParameters& p) {
 // thread rasterises itself, so stepping and drawing keep a core each. Set before the window's
 // context exists; a value the user set wins; other drivers ignore it.
 void rasterise_in_the_drawing_thread() {
-  setenv("LP_NUM_THREADS", "0", 0);
+  platform::set_environment_default("LP_NUM_THREADS", "0");
 }
 
 int open_viewer(Options& options) {
@@ -230,7 +215,7 @@ int open_viewer(Options& options) {
     return no_display;
   }
   check_window_memory(p);
-  options.run.terminal = isatty(STDERR_FILENO) == 1;
+  options.run.terminal = platform::standard_error_is_terminal();
   options.app.frame_rate_limit = !headless;
   options.app.fixed_frame_time = headless && !options.run.benchmark;
   if (!options.app.fixed_frame_time) rasterise_in_the_drawing_thread();
@@ -267,18 +252,6 @@ int checked_stdout(int code) {
   return code == done ? lost_output : code;
 }
 
-// Under an address-space limit (ulimit -v), glibc's malloc reserves 64 MiB of it for each thread
-// that allocates (llvmpipe's included): whether the window then fitted, and which allocation
-// failed, changed from run to run and from limit to limit (600 MB crashed, 650 MB ran). One arena
-// makes the window's need a fixed amount, which check_window_memory compares with the limit.
-void one_arena_under_memory_limits() {
-  for (const int resource : {RLIMIT_AS, RLIMIT_DATA}) {
-    rlimit limit{};
-    if (getrlimit(resource, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
-      mallopt(M_ARENA_MAX, 1);
-  }
-}
-
 constexpr const char* exit_codes =
     "\nExit codes: 0 done, 2 bad input, 3 the run diverged, 4 a task not written yet, 5 no "
     "display, 6 the output could not be written (a full disk, a closed pipe); 1 an unexpected "
@@ -289,8 +262,13 @@ constexpr const char* exit_codes =
 
 int main(int argc, char** argv) {
   // A closed pipe is then a write error, reported with exit 6, not a silent death by SIGPIPE.
-  std::signal(SIGPIPE, SIG_IGN);
-  one_arena_under_memory_limits();
+  platform::ignore_broken_pipes();
+  // Under an address-space limit (ulimit -v), glibc's malloc reserves 64 MiB of it for each thread
+  // that allocates (llvmpipe's included): whether the window then fitted, and which allocation
+  // failed, changed from run to run and from limit to limit (600 MB crashed, 650 MB ran). One
+  // arena makes the window's need a fixed amount, which check_window_memory compares with the
+  // limit.
+  platform::one_arena_under_memory_limits();
   Options options;
   CLI::App cli{"springlab-view: watch, steer and diagnose a springlab scene in a window"};
   cli.add_option("--scene", options.app.scene,

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <iterator>
 
@@ -46,23 +47,26 @@ void Panel::remember_background() {
 void Panel::draw_backgrounds(sf::RenderTarget& target) const {
   // ImGui's window colour over the window's background, as ImGui's blending would give it.
   const ImVec4 bg = ImGui::GetStyle().Colors[ImGuiCol_WindowBg];
-  const auto over = [&bg](float c, sf::Uint8 under) {
-    return sf::Uint8(std::lround(255.0f * c * bg.w + float(under) * (1.0f - bg.w)));
+  const auto over = [&bg](float c, std::uint8_t under) {
+    return std::uint8_t(std::lround(255.0f * c * bg.w + float(under) * (1.0f - bg.w)));
   };
   const sf::Color c(over(bg.x, colour::background.r), over(bg.y, colour::background.g),
                     over(bg.z, colour::background.b));
-  std::vector<sf::Vertex> quads;
-  const auto fill = [&quads](const WidgetRect& r, sf::Color colour) {
-    for (sf::Vector2f corner : {sf::Vector2f(r.left, r.top), sf::Vector2f(r.right, r.top),
-                                sf::Vector2f(r.right, r.bottom), sf::Vector2f(r.left, r.bottom)})
-      quads.emplace_back(corner, colour);
+  std::vector<sf::Vertex> triangles;  // two a rectangle (SFML 3 has no quads)
+  const auto fill = [&triangles](const WidgetRect& r, sf::Color colour) {
+    const sf::Vector2f top_left(r.left, r.top), top_right(r.right, r.top),
+        bottom_right(r.right, r.bottom), bottom_left(r.left, r.bottom);
+    for (sf::Vector2f corner :
+         {top_left, top_right, bottom_right, top_left, bottom_right, bottom_left})
+      triangles.push_back({corner, colour});
   };
   for (const WidgetRect& r : backgrounds_)
     fill(r, c);
   // The plots' frames too: a quarter of what ImGui would otherwise fill, blended, each frame.
   for (const WidgetRect& r : plot_frames_)
     fill(r, sf::Color(plot_background.r, plot_background.g, plot_background.b));
-  target.draw(quads.data(), quads.size(), sf::Quads, sf::RenderStates(sf::BlendNone));
+  target.draw(triangles.data(), triangles.size(), sf::PrimitiveType::Triangles,
+              sf::RenderStates(sf::BlendNone));
 }
 
 std::optional<WidgetRect> Panel::rect(const std::string& name) const {

@@ -1,16 +1,20 @@
 #include "gui/pixel_canvas.hpp"
 
+#include "gui/sfml_compat.hpp"
+
 #include <SFML/Graphics/Sprite.hpp>
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
+#include <cstring>
 
 namespace springlab::view {
 
 std::uint32_t PixelCanvas::packed(sf::Color c) {
-  const std::uint32_t rgba = c.toInteger();  // 0xRRGGBBAA
-  return std::endian::native == std::endian::little ? __builtin_bswap32(rgba) : rgba;
+  const std::uint8_t bytes[4] = {c.r, c.g, c.b, c.a};
+  std::uint32_t pixel;
+  std::memcpy(&pixel, bytes, sizeof pixel);
+  return pixel;
 }
 
 void PixelCanvas::begin(const Viewport& area) {
@@ -73,10 +77,12 @@ void PixelCanvas::square(sf::Vector2f centre, float half, std::uint32_t c) {
 void PixelCanvas::draw(sf::RenderTarget& target) {
   const sf::Vector2u size{unsigned(width_), unsigned(height_)};
   // Grown, never shrunk: a texture made for each new size would cost more than the upload.
-  if (texture_.getSize().x < size.x || texture_.getSize().y < size.y)
-    texture_.create(std::max(size.x, texture_.getSize().x), std::max(size.y, texture_.getSize().y));
-  texture_.update(reinterpret_cast<const sf::Uint8*>(pixels_.data()), size.x, size.y, 0, 0);
-  sf::Sprite sprite(texture_, sf::IntRect(0, 0, int(size.x), int(size.y)));
+  const sf::Vector2u had = texture_.getSize();
+  if ((had.x < size.x || had.y < size.y) &&
+      !compat::resize(texture_, {std::max(size.x, had.x), std::max(size.y, had.y)}))
+    return;  // no texture that large: the picture is not shown
+  compat::update(texture_, reinterpret_cast<const std::uint8_t*>(pixels_.data()), size);
+  sf::Sprite sprite(texture_, compat::int_rect(0, 0, int(size.x), int(size.y)));
   sprite.setPosition(origin_);
   target.draw(sprite);
 }

@@ -1,13 +1,16 @@
 #include "gui/resident_driver.hpp"
 
+#ifdef __GLIBC__
 #include <dlfcn.h>
 #include <link.h>
 
 #include <string_view>
+#endif
 
 namespace springlab::view {
 
 void keep_gl_driver_loaded() {
+#ifdef __GLIBC__
   dl_iterate_phdr(
       [](dl_phdr_info* info, std::size_t, void*) {
         const std::string_view path = info->dlpi_name ? info->dlpi_name : "";
@@ -17,6 +20,7 @@ void keep_gl_driver_loaded() {
         return 0;
       },
       nullptr);
+#endif
 }
 
 }  // namespace springlab::view

@@ -21,8 +21,8 @@ constexpr std::size_t thick_spring_limit = 5000;
 constexpr int square_dot_limit = 2000;  // particles beyond which dots are drawn as squares
 
 sf::Color mix(sf::Color a, sf::Color b, double t) {
-  const auto channel = [t](sf::Uint8 x, sf::Uint8 y) {
-    return static_cast<sf::Uint8>(std::lround(double(x) + (double(y) - double(x)) * t));
+  const auto channel = [t](std::uint8_t x, std::uint8_t y) {
+    return static_cast<std::uint8_t>(std::lround(double(x) + (double(y) - double(x)) * t));
   };
   return {channel(a.r, b.r), channel(a.g, b.g), channel(a.b, b.b), channel(a.a, b.a)};
 }
@@ -53,7 +53,7 @@ void add_segment(std::vector<sf::Vertex>& triangles, sf::Vector2f a, sf::Vector2
   if (!(length > 0.0f)) return;
   const sf::Vector2f n(-d.y / length * width / 2, d.x / length * width / 2);
   for (sf::Vector2f p : {a + n, a - n, b + n, b + n, a - n, b - n})
-    triangles.emplace_back(p, c);
+    triangles.push_back({p, c});
 }
 
 // A dot as an octagon (fan of triangles), or a pinned particle as a square (two triangles).
@@ -75,13 +75,13 @@ void add_dot(std::vector<sf::Vertex>& triangles, sf::Vector2f centre, float radi
     const sf::Vector2f d = centre + sf::Vector2f(-radius, radius);
     const sf::Vector2f e = centre + sf::Vector2f(radius, radius);
     for (sf::Vector2f p : {a, b, d, d, b, e})
-      triangles.emplace_back(p, c);
+      triangles.push_back({p, c});
     return;
   }
   for (std::size_t k = 0; k < 8; ++k) {
-    triangles.emplace_back(centre, c);
-    triangles.emplace_back(centre + octagon[k] * radius, c);
-    triangles.emplace_back(centre + octagon[k + 1] * radius, c);
+    triangles.push_back({centre, c});
+    triangles.push_back({centre + octagon[k] * radius, c});
+    triangles.push_back({centre + octagon[k + 1] * radius, c});
   }
 }
 
@@ -95,7 +95,7 @@ void add_arrow(std::vector<sf::Vertex>& triangles, sf::Vector2f from, sf::Vector
   const sf::Vector2f base = to - u * head;
   add_segment(triangles, from, base, width, c);
   for (sf::Vector2f p : {to, base + n * (head / 2), base - n * (head / 2)})
-    triangles.emplace_back(p, c);
+    triangles.push_back({p, c});
 }
 
 // The spring and damper force on particle `at` from spring s (N).
@@ -250,7 +250,8 @@ void point_strains(const Vectors& r, int cols, double rest, const std::vector<in
 // as squares, which a person can still pick out.
 DrawCounts draw_surface(sf::RenderTarget& target, const RunState& run, const Camera& camera,
                         const DrawOptions& options) {
-  static sf::VertexArray strip(sf::TriangleStrip);  // resized in place: no allocation once grown
+  static sf::VertexArray strip(
+      sf::PrimitiveType::TriangleStrip);  // resized in place: no allocation once grown
   static std::vector<sf::Vertex> marks;
   static std::vector<float> strain;
   static std::vector<int> rows, columns;
@@ -268,7 +269,7 @@ DrawCounts draw_surface(sf::RenderTarget& target, const RunState& run, const Cam
   const auto vertex = [&](std::size_t y, std::size_t x) {
     sf::Vector2f at = camera.to_screen(r.col(rows[y] * p.cols + columns[x]));
     if (!finite(at)) at = {0.0f, 0.0f};
-    return sf::Vertex(at, colours[strain_index(double(strain[y * m + x]), per_step)]);
+    return sf::Vertex{at, colours[strain_index(double(strain[y * m + x]), per_step)]};
   };
   strip.resize(2 * m * (rows.size() - 1) + 2 * (rows.size() - 2));
   std::size_t v = 0;
@@ -300,7 +301,7 @@ DrawCounts draw_surface(sf::RenderTarget& target, const RunState& run, const Cam
             faded(pinned ? colour::pinned : colour::particle, options.ghost));
     ++counts.dots;
   }
-  target.draw(marks.data(), marks.size(), sf::Triangles);
+  target.draw(marks.data(), marks.size(), sf::PrimitiveType::Triangles);
   return counts;
 }
 
@@ -362,7 +363,7 @@ DrawCounts draw_scene(sf::RenderTarget& target, const RunState& run, const Camer
                 faded(strain_colour(strain_of(s, r), options.strain_scale), options.ghost));
     ++counts.springs;
   }
-  target.draw(lines.data(), lines.size(), sf::Triangles);
+  target.draw(lines.data(), lines.size(), sf::PrimitiveType::Triangles);
 
   const float radius = particle_radius(camera, sim.parameters().spacing);
   const int particles = int(r.cols());
@@ -377,7 +378,7 @@ DrawCounts draw_scene(sf::RenderTarget& target, const RunState& run, const Camer
     add_dot(dots, at, radius * (pinned ? 1.3f : 1.0f), squares || pinned, c);
     ++counts.dots;
   }
-  target.draw(dots.data(), dots.size(), sf::Triangles);
+  target.draw(dots.data(), dots.size(), sf::PrimitiveType::Triangles);
   return counts;
 }
 
@@ -419,7 +420,7 @@ void draw_force_arrows(sf::RenderTarget& target, const RunState& run, const Came
   }
   add_arrow(arrows, camera.to_screen(at), camera.to_screen(at + total * metres_per_newton), 3.5f,
             colour::net_force);
-  target.draw(arrows.data(), arrows.size(), sf::Triangles);
+  target.draw(arrows.data(), arrows.size(), sf::PrimitiveType::Triangles);
 }
 
 int particle_at(const Simulation& sim, const Camera& camera, sf::Vector2f screen) {
