@@ -10,7 +10,7 @@
 #include <cmath>
 
 using namespace springlab;
-using Catch::Matchers::Contains;
+using lab_catch::Contains;
 
 namespace {
 

@@ -21,8 +21,8 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::Contains;
-using Catch::Matchers::WithinRel;
+using lab_catch::Contains;
+using lab_catch::WithinRel;
 
 TEST_CASE("Parameters: the defaults are the lab's values", "[core][parameters]") {
   const SceneParameters p;

@@ -18,8 +18,8 @@
 #include <string>
 
 using namespace springlab;
-using Catch::Matchers::Contains;
-using Catch::Matchers::WithinRel;
+using lab_catch::Contains;
+using lab_catch::WithinRel;
 
 namespace {
 

@@ -14,8 +14,8 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::Contains;
-using Catch::Matchers::WithinAbs;
+using lab_catch::Contains;
+using lab_catch::WithinAbs;
 
 namespace {
 

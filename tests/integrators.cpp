@@ -14,9 +14,9 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::Contains;
-using Catch::Matchers::WithinAbs;
-using Catch::Matchers::WithinRel;
+using lab_catch::Contains;
+using lab_catch::WithinAbs;
+using lab_catch::WithinRel;
 
 namespace {
 

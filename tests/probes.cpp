@@ -7,7 +7,7 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::Contains;
+using lab_catch::Contains;
 
 namespace {
 

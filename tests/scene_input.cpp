@@ -10,7 +10,7 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::Contains;
+using lab_catch::Contains;
 
 namespace {
 

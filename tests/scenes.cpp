@@ -16,9 +16,9 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::Contains;
-using Catch::Matchers::WithinAbs;
-using Catch::Matchers::WithinRel;
+using lab_catch::Contains;
+using lab_catch::WithinAbs;
+using lab_catch::WithinRel;
 
 TEST_CASE("Particle sets: names, indices, ranges and mixtures", "[core][selection]") {
   using V = std::vector<int>;

@@ -16,8 +16,8 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::WithinAbs;
-using Catch::Matchers::WithinRel;
+using lab_catch::WithinAbs;
+using lab_catch::WithinRel;
 
 TEST_CASE("Shear springs: the count, both diagonals of each cell once, no self-springs",
           "[task3][topology]") {

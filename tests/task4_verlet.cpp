@@ -13,8 +13,8 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::WithinAbs;
-using Catch::Matchers::WithinRel;
+using lab_catch::WithinAbs;
+using lab_catch::WithinRel;
 
 namespace {
 

@@ -12,8 +12,8 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::WithinAbs;
-using Catch::Matchers::WithinRel;
+using lab_catch::WithinAbs;
+using lab_catch::WithinRel;
 
 TEST_CASE(
     "A grid sheared row by row: every cell's two diagonals store k s^2 / 2, the structural "

@@ -9,7 +9,7 @@
 
 using namespace springlab;
 using namespace springlab::testing;
-using Catch::Matchers::WithinAbs;
+using lab_catch::WithinAbs;
 
 TEST_CASE(
     "Verlet on two masses with another k, b, m and rest length converges with order 2 over "

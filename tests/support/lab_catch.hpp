@@ -24,6 +24,7 @@
 namespace lab_catch {
 using Catch::Approx;
 using Catch::Matchers::EndsWith;
+using Catch::Matchers::MatcherBase;
 using Catch::Matchers::StartsWith;
 using Catch::Matchers::WithinAbs;
 using Catch::Matchers::WithinRel;
@@ -37,6 +38,7 @@ inline auto Contains(const std::string& part,
 #include <catch2/catch.hpp>
 
 namespace lab_catch {
+using Catch::MatcherBase;
 using Catch::Detail::Approx;
 using Catch::Matchers::Contains;
 using Catch::Matchers::EndsWith;

@@ -3,13 +3,12 @@
 // a simulated run into a number theory predicts. Independent of the implementation under test.
 #pragma once
 
+#include "lab_catch.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/simulation.hpp"
 #include "springlab/stability.hpp"
 #include "springlab/types.hpp"
-
-#include <catch2/catch.hpp>
 
 #include <functional>
 #include <random>
@@ -47,7 +46,7 @@ inline void gravity_without_mass(const Eigen::VectorXd& mass, const Vec2& g, Vec
 }
 
 /// Matches a Vec2 within `tolerance` (Euclidean distance) of `expected`; prints both on failure.
-class IsNear : public Catch::MatcherBase<Vec2> {
+class IsNear : public lab_catch::MatcherBase<Vec2> {
  public:
   IsNear(Vec2 expected, double tolerance) : expected_(std::move(expected)), tolerance_(tolerance) {}
   bool match(const Vec2& actual) const override {

@@ -1,4 +1,4 @@
-// Catch2's session, as the harness uses it. Catch2 declares its Session only where its whole
+// Catch2's session, as the harness uses it. Catch2 2 declares its Session only where its whole
 // implementation is compiled (catch_runner.cpp, about 15 s), so the rest of the harness reaches
 // it through these two functions.
 #pragma once

@@ -3,6 +3,7 @@
 #include "reports.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <fstream>
 #include <iterator>
 #include <set>

@@ -7,11 +7,11 @@
 // (tests/hidden/), they are graded too, reported as hidden, and each mutant in
 // tests/hidden/mutants/ passes every public test of its task and fails a hidden one: the reason
 // those tests exist.
+#include "lab_catch.hpp"
 #include "process.hpp"
 #include "reports.hpp"
 
 #include <toml++/toml.h>
-#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -403,7 +403,7 @@ TEST_CASE(
       CHECK(hidden[std::size_t(task)] > 0);
     }
     const std::string feedback = read(batch / "results" / "solutions" / "feedback.txt");
-    CHECK_THAT(feedback, Catch::Contains(std::string("... pass ") + hidden_mark));
+    CHECK_THAT(feedback, lab_catch::Contains(std::string("... pass ") + hidden_mark));
   }
   // The starter code fails every test by saying what to write.
   const auto starter = nlohmann::json::parse(read(batch / "results" / "starter" / "results.json"));

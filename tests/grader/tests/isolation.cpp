@@ -2,9 +2,9 @@
 // runs, what can be written, and that nothing outlives it. Where this machine cannot make
 // namespaces (some containers), the tests say why and check the fallback instead.
 #include "isolation.hpp"
+#include "lab_catch.hpp"
 
 #include <unistd.h>
-#include <catch2/catch.hpp>
 
 #include <fstream>
 
@@ -63,7 +63,8 @@ bool alive(const std::string& marker) {
 TEST_CASE("A sandboxed command sees the system, what it is given and nothing else", "[isolation]") {
   if (!isolation().namespaces()) {
     WARN("no namespaces on this machine: " << isolation().why_not());
-    CHECK_THAT(isolation().describe(), Catch::StartsWith("no sandbox: namespaces cannot be had"));
+    CHECK_THAT(isolation().describe(),
+               lab_catch::StartsWith("no sandbox: namespaces cannot be had"));
     return;
   }
   Scratch s;
@@ -78,16 +79,16 @@ TEST_CASE("A sandboxed command sees the system, what it is given and nothing els
       view);
   INFO(o.output);
   CHECK(o.exited);
-  CHECK_THAT(o.output, Catch::StartsWith("seen\n"));
-  CHECK_THAT(o.output, !Catch::Contains("SECRET") && !Catch::Contains("SHADOW") &&
-                           !Catch::Contains("PASSWD") && !Catch::Contains("HOME"));
-  CHECK_THAT(o.output, Catch::Contains((s.top / "output").string() + "\n"));
-  CHECK_THAT(o.output, Catch::Contains("COMPILER"));
+  CHECK_THAT(o.output, lab_catch::StartsWith("seen\n"));
+  CHECK_THAT(o.output, !lab_catch::Contains("SECRET") && !lab_catch::Contains("SHADOW") &&
+                           !lab_catch::Contains("PASSWD") && !lab_catch::Contains("HOME"));
+  CHECK_THAT(o.output, lab_catch::Contains((s.top / "output").string() + "\n"));
+  CHECK_THAT(o.output, lab_catch::Contains("COMPILER"));
   // An unprivileged user, and exactly the environment given.
-  CHECK_THAT(o.output, !Catch::Contains("\n0\n"));
+  CHECK_THAT(o.output, !lab_catch::Contains("\n0\n"));
   for (const std::string& variable : plain_environment())
-    CHECK_THAT(o.output, Catch::Contains(variable + "\n"));
-  CHECK_THAT(o.output, !Catch::Contains("HOME=") && !Catch::Contains("USER="));
+    CHECK_THAT(o.output, lab_catch::Contains(variable + "\n"));
+  CHECK_THAT(o.output, !lab_catch::Contains("HOME=") && !lab_catch::Contains("USER="));
 }
 
 TEST_CASE("A sandboxed command writes only its output folder and a scratch of the given size",
@@ -163,5 +164,5 @@ TEST_CASE("Without namespaces, commands keep the host's paths and run as nobody 
   c.argv = {"/grade/worker"};
   none.confine(c, view);
   CHECK(c.run_as == (geteuid() == 0 ? uid_t(65534) : uid_t(-1)));
-  CHECK_THAT(none.describe(), Catch::Contains("refused by this host"));
+  CHECK_THAT(none.describe(), lab_catch::Contains("refused by this host"));
 }

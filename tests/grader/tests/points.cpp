@@ -1,9 +1,9 @@
 // The points file: defaults, overrides by exact test name, and errors that name what is wrong.
 #include "points.hpp"
+#include "lab_catch.hpp"
 #include "submission.hpp"
 
 #include <unistd.h>
-#include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -68,17 +68,19 @@ TEST_CASE("Points: a task without a section keeps 1 point a test", "[points]") {
 TEST_CASE("Points: mistakes in the file are named with the value and what is allowed", "[points]") {
   std::vector<TestInfo> tests = parse_test_list(listing);
   CHECK_THAT(rejection(tests, "[task1]\n\"Spring: tree\" = 1\n"),
-             Catch::Contains("\"Spring: tree\": no test of task 1 has this name") &&
-                 Catch::Contains("Spring: one"));
-  CHECK_THAT(rejection(tests, "[task1]\ndefault = -1\n"),
-             Catch::Contains("task1.default = -1: allowed a number of points from 0 to 1000000"));
-  CHECK_THAT(rejection(tests, "[task1]\ndefault = \"two\"\n"),
-             Catch::Contains("default = \"two\": allowed a number of points from 0 to 1000000"));
+             lab_catch::Contains("\"Spring: tree\": no test of task 1 has this name") &&
+                 lab_catch::Contains("Spring: one"));
+  CHECK_THAT(
+      rejection(tests, "[task1]\ndefault = -1\n"),
+      lab_catch::Contains("task1.default = -1: allowed a number of points from 0 to 1000000"));
+  CHECK_THAT(
+      rejection(tests, "[task1]\ndefault = \"two\"\n"),
+      lab_catch::Contains("default = \"two\": allowed a number of points from 0 to 1000000"));
   CHECK_THAT(rejection(tests, "[task1]\ndefault = 1e308\n"),
-             Catch::Contains("task1.default = 1e+308: allowed a number of points from 0 to"));
+             lab_catch::Contains("task1.default = 1e+308: allowed a number of points from 0 to"));
   CHECK_THAT(rejection(tests, "[task9]\ndefault = 1\n"),
-             Catch::Contains("[task9]: allowed sections are [task1] ... [task5]"));
-  CHECK_THAT(rejection(tests, "[task1\n"), Catch::Contains(".toml:1"));
+             lab_catch::Contains("[task9]: allowed sections are [task1] ... [task5]"));
+  CHECK_THAT(rejection(tests, "[task1\n"), lab_catch::Contains(".toml:1"));
 }
 
 namespace {
@@ -130,6 +132,7 @@ TEST_CASE("Points of hidden tests: the task's default, its `hidden` key, or thei
   CHECK(tests[1].points == 2.0);
   CHECK(tests[2].points == 5.0);
   CHECK(tests[3].points == 4.0);  // its name wins over the key
-  CHECK_THAT(rejection(tests, "[task1]\nhidden = -1\n"),
-             Catch::Contains("task1.hidden = -1: allowed a number of points from 0 to 1000000"));
+  CHECK_THAT(
+      rejection(tests, "[task1]\nhidden = -1\n"),
+      lab_catch::Contains("task1.hidden = -1: allowed a number of points from 0 to 1000000"));
 }

@@ -4,10 +4,10 @@
 // the policy on macros sufficient: both builds define the same macros.
 #include "policy.hpp"
 #include "kit.hpp"
+#include "lab_catch.hpp"
 #include "process.hpp"
 
 #include <unistd.h>
-#include <catch2/catch.hpp>
 
 #include <algorithm>
 #include <fstream>
@@ -46,7 +46,8 @@ TEST_CASE("Inline assembler is refused however it is spelled, with its line", "[
     INFO(text);
     REQUIRE(breach);
     CHECK(breach->line == 2);
-    CHECK_THAT(breach->text(), Catch::StartsWith("task.cpp:2: inline assembler is not allowed"));
+    CHECK_THAT(breach->text(),
+               lab_catch::StartsWith("task.cpp:2: inline assembler is not allowed"));
   }
 }
 
@@ -85,7 +86,7 @@ TEST_CASE("Attributes of the compiler's own, pragmas and build-telling macros ar
     const auto breach = c.check("// a comment\n" + text + "\n");
     REQUIRE(breach);
     CHECK(breach->line == line);
-    CHECK_THAT(breach->what, Catch::Contains(named));
+    CHECK_THAT(breach->what, lab_catch::Contains(named));
   }
 }
 
@@ -139,8 +140,8 @@ TEST_CASE("The preprocessor's output: what macros made of the copy's lines, and 
     REQUIRE(p.breach);
     CHECK(p.breach->file == "task.cpp");
     CHECK(p.breach->line == 3);
-    CHECK_THAT(p.breach->what, Catch::StartsWith("inline assembler") &&
-                                   Catch::EndsWith("(written so through a macro)"));
+    CHECK_THAT(p.breach->what, lab_catch::StartsWith("inline assembler") &&
+                                   lab_catch::EndsWith("(written so through a macro)"));
   }
   SECTION("the system's own headers may use what the copy may not") {
     const auto p = check(start +
@@ -163,7 +164,7 @@ TEST_CASE("The preprocessor's output: what macros made of the copy's lines, and 
     CHECK(p.breach->file == "task.cpp");
     CHECK(p.breach->line == 6);
     CHECK_THAT(p.breach->what,
-               Catch::StartsWith("it includes dirent.h, which a submission may not"));
+               lab_catch::StartsWith("it includes dirent.h, which a submission may not"));
     CHECK(p.own_files == std::vector<std::string>{"helper.hpp"});
   }
 }
@@ -210,6 +211,7 @@ TEST_CASE("The plain and the sanitized build of submission code define the same 
   for (const std::string& line : differ)
     WARN("in one build only: " << line);
   for (const std::string& line : plain)
-    CHECK_THAT(line, !Catch::Contains("NDEBUG ") && !Catch::Contains("__SANITIZE_ADDRESS__"));
+    CHECK_THAT(line,
+               !lab_catch::Contains("NDEBUG ") && !lab_catch::Contains("__SANITIZE_ADDRESS__"));
   CHECK(kit.plain.env == kit.sanitized.env);
 }

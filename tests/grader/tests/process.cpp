@@ -2,8 +2,7 @@
 // itself, shown with the shell. Nothing here depends on how fast the machine is: the limits are
 // far from what the commands need, or the commands never end by themselves.
 #include "process.hpp"
-
-#include <catch2/catch.hpp>
+#include "lab_catch.hpp"
 
 #include <csignal>
 
@@ -119,7 +118,7 @@ TEST_CASE("A program that does not exist is reported, not run", "[process]") {
   Outcome result;
   pool.add(std::move(c), [&](Outcome o) { result = std::move(o); });
   pool.run();
-  CHECK_THAT(result.start_error, Catch::Contains("cannot run /nonexistent/program"));
+  CHECK_THAT(result.start_error, lab_catch::Contains("cannot run /nonexistent/program"));
 }
 
 TEST_CASE("Many children: each reported once, and callbacks may add more", "[process]") {

@@ -1,8 +1,8 @@
 // Reports: what a student's output can put in them is made printable, the formats parse back,
 // and the gradebook has exactly its header.
 #include "reports.hpp"
+#include "lab_catch.hpp"
 
-#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 using namespace springlab::grader;
@@ -76,9 +76,9 @@ TEST_CASE("results.json: Gradescope's fields for every test, and what the code p
   CHECK(failed["visibility"] == "visible");
   CHECK(failed["tags"] == nlohmann::json::array({"task1"}));
   CHECK_THAT(failed["output"].get<std::string>(),
-             Catch::Contains("your code printed 20 bytes:\n| printed ?[31m red ?"));
+             lab_catch::Contains("your code printed 20 bytes:\n| printed ?[31m red ?"));
   CHECK(json["tests"][0]["tags"] == nlohmann::json::array({"task1", "spring"}));
-  CHECK_THAT(json["tests"][2]["output"].get<std::string>(), Catch::Contains("expected ';'"));
+  CHECK_THAT(json["tests"][2]["output"].get<std::string>(), lab_catch::Contains("expected ';'"));
 }
 
 TEST_CASE("results.json: the top-level output is the summary, and says what files were missing",
@@ -88,17 +88,19 @@ TEST_CASE("results.json: the top-level output is the summary, and says what file
   CHECK(json["output"] == summary_feedback(e.result));
   e.result.tasks[2].notes = {"structural_springs.cpp is missing: graded as the starter code"};
   json = nlohmann::json::parse(results_json(e.result, 1.0));
-  CHECK_THAT(json["output"].get<std::string>(),
-             Catch::StartsWith(summary_feedback(e.result)) &&
-                 Catch::EndsWith("Notes on the files submitted:\n  task 2: structural_springs.cpp "
-                                 "is missing: graded as the starter code\n"));
+  CHECK_THAT(
+      json["output"].get<std::string>(),
+      lab_catch::StartsWith(summary_feedback(e.result)) &&
+          lab_catch::EndsWith("Notes on the files submitted:\n  task 2: structural_springs.cpp "
+                              "is missing: graded as the starter code\n"));
 }
 
 TEST_CASE("JUnit: one testcase per test, failures escaped", "[reports]") {
   const Example e("alice", "<system-out>");
   const std::string xml = junit_report(e.result, 1);
-  CHECK_THAT(xml, Catch::Contains("<testsuite name=\"task1\" tests=\"2\" failures=\"1\">"));
-  CHECK_THAT(xml, Catch::Contains("message=\"a &lt;bad&gt; &amp; &quot;quoted&quot; failure\""));
+  CHECK_THAT(xml, lab_catch::Contains("<testsuite name=\"task1\" tests=\"2\" failures=\"1\">"));
+  CHECK_THAT(xml,
+             lab_catch::Contains("message=\"a &lt;bad&gt; &amp; &quot;quoted&quot; failure\""));
   CHECK(xml.find("<system-out>") == std::string::npos);
 }
 
@@ -109,14 +111,15 @@ TEST_CASE("Feedback: one line per test, the failure explained, and a count in po
                     {2, {"task2_four_masses/spring_forces.cpp"}}};
   const Example e("alice", "");
   const std::string text = feedback(e.result, kit);
-  CHECK_THAT(text, Catch::Contains("==> Task 1: the code in tasks/task1_two_masses/ (handout "
-                                   "section 1)\n  Spring: one ... pass\n  Spring: two ... FAIL\n"
-                                   "        a <bad> & \"quoted\" failure\n"));
-  CHECK_THAT(text, Catch::Contains("1 of 2 tests pass (2 of 3 points); fix the first FAIL"));
-  CHECK_THAT(text, Catch::Contains("  does not compile:\n  spring_forces.cpp:3: error"));
-  CHECK_THAT(text, Catch::Contains("==> Summary: 2 of 4.5 points\n  task 1: 1 of 2 tests pass "
-                                   "(2 of 3 points); first failure: Spring: two\n"));
-  CHECK_THAT(text, Catch::Contains("  task 2: does not compile (0 of 1.5 points)"));
+  CHECK_THAT(text,
+             lab_catch::Contains("==> Task 1: the code in tasks/task1_two_masses/ (handout "
+                                 "section 1)\n  Spring: one ... pass\n  Spring: two ... FAIL\n"
+                                 "        a <bad> & \"quoted\" failure\n"));
+  CHECK_THAT(text, lab_catch::Contains("1 of 2 tests pass (2 of 3 points); fix the first FAIL"));
+  CHECK_THAT(text, lab_catch::Contains("  does not compile:\n  spring_forces.cpp:3: error"));
+  CHECK_THAT(text, lab_catch::Contains("==> Summary: 2 of 4.5 points\n  task 1: 1 of 2 tests pass "
+                                       "(2 of 3 points); first failure: Spring: two\n"));
+  CHECK_THAT(text, lab_catch::Contains("  task 2: does not compile (0 of 1.5 points)"));
 }
 
 namespace {
@@ -147,13 +150,14 @@ TEST_CASE("results.json: a hidden test is shown after the due date, and its resu
   CHECK(hidden["visibility"] == "after_due_date");
   CHECK(hidden["tags"] == nlohmann::json::array({"task1", "hidden"}));
   CHECK(hidden["max_score"] == 3.0);
-  CHECK_THAT(hidden["output"].get<std::string>(), Catch::Contains("20/45 of Hooke's"));
+  CHECK_THAT(hidden["output"].get<std::string>(), lab_catch::Contains("20/45 of Hooke's"));
   CHECK(json["score"] == 1.0);  // every test counts
   // The run's output, which Gradescope shows at once, counts the public tests only.
   const std::string output = json["output"].get<std::string>();
-  CHECK_THAT(output, Catch::Contains("==> Summary: 1 of 1 points\n  task 1: its 1 test passes"));
-  CHECK_THAT(output, Catch::Contains("and 1 hidden test (3 points), shown after the due date"));
-  CHECK_THAT(output, !Catch::Contains("secret") && !Catch::Contains("Hooke"));
+  CHECK_THAT(output,
+             lab_catch::Contains("==> Summary: 1 of 1 points\n  task 1: its 1 test passes"));
+  CHECK_THAT(output, lab_catch::Contains("and 1 hidden test (3 points), shown after the due date"));
+  CHECK_THAT(output, !lab_catch::Contains("secret") && !lab_catch::Contains("Hooke"));
 }
 
 TEST_CASE("Feedback: an instructor sees the hidden tests marked; the visible part has none",
@@ -162,14 +166,14 @@ TEST_CASE("Feedback: an instructor sees the hidden tests marked; the visible par
   kit.task_files = {{1, {"task1_two_masses/spring_damper.cpp"}}};
   const WithHidden e;
   CHECK_THAT(feedback(e.result, kit),
-             Catch::Contains("  Spring: one ... pass\n  Spring: secret ... FAIL (hidden test: "
-                             "students see it after the due date)\n") &&
-                 Catch::Contains("1 of 2 tests pass (1 of 4 points)"));
+             lab_catch::Contains("  Spring: one ... pass\n  Spring: secret ... FAIL (hidden test: "
+                                 "students see it after the due date)\n") &&
+                 lab_catch::Contains("1 of 2 tests pass (1 of 4 points)"));
   const SubmissionResult visible = visible_part(e.result);
   CHECK(visible.max_points() == 1.0);
   const std::string text = feedback(visible, kit);
-  CHECK_THAT(text, !Catch::Contains("secret") && !Catch::Contains("hidden"));
-  CHECK_THAT(text, Catch::Contains("1 of 1 tests pass (1 of 1 points)."));
+  CHECK_THAT(text, !lab_catch::Contains("secret") && !lab_catch::Contains("hidden"));
+  CHECK_THAT(text, lab_catch::Contains("1 of 1 tests pass (1 of 1 points)."));
 }
 
 TEST_CASE("Summary: a task not started says what to write first; one that passes says no more",
@@ -183,22 +187,23 @@ TEST_CASE("Summary: a task not started says what to write first; one that passes
   result.tasks[1].tests = {{&tests[0], false, stub, "", 0, 0.1, 0},
                            {&tests[1], false, stub + "\nmore", "", 0, 0.1, 0}};
   CHECK_THAT(summary_feedback(result),
-             Catch::Contains("  task 1: not started (write spring_force in "
-                             "tasks/task1_two_masses/spring_damper.cpp, handout section 1)\n"));
+             lab_catch::Contains("  task 1: not started (write spring_force in "
+                                 "tasks/task1_two_masses/spring_damper.cpp, handout section 1)\n"));
   // Its feedback says the stub's message once, not once per test.
   Kit kit;
   kit.task_files = {{1, {"task1_two_masses/spring_damper.cpp"}}};
   const std::string text = feedback(result, kit);
   CHECK_THAT(text,
-             Catch::Contains("  Spring: one ... not started\n  Spring: two ... not started\n"));
+             lab_catch::Contains("  Spring: one ... not started\n  Spring: two ... not started\n"));
   CHECK(text.find("is not implemented yet") == std::string::npos);
-  CHECK_THAT(text, Catch::Contains("not started yet: write spring_force in"));
+  CHECK_THAT(text, lab_catch::Contains("not started yet: write spring_force in"));
   // Started: one test fails otherwise, so the first failure is named instead.
   result.tasks[1].tests[1].message = "got 0.5 N, expected 1 N";
-  CHECK_THAT(summary_feedback(result),
-             Catch::EndsWith("  task 1: 0 of 2 tests pass (0 of 2 points); first failure: Spring: "
-                             "one\n"));
+  CHECK_THAT(
+      summary_feedback(result),
+      lab_catch::EndsWith("  task 1: 0 of 2 tests pass (0 of 2 points); first failure: Spring: "
+                          "one\n"));
   result.tasks[1].tests[0].passed = result.tasks[1].tests[1].passed = true;
   CHECK_THAT(summary_feedback(result),
-             Catch::EndsWith("  task 1: all 2 tests pass (2 of 2 points)\n"));
+             lab_catch::EndsWith("  task 1: all 2 tests pass (2 of 2 points)\n"));
 }

@@ -1,8 +1,8 @@
 // Finding a submission's files in any of its three shapes, and the private copy that is compiled.
 #include "submission.hpp"
+#include "lab_catch.hpp"
 
 #include <unistd.h>
-#include <catch2/catch.hpp>
 
 #include <fstream>
 
@@ -74,9 +74,9 @@ TEST_CASE("The private copy: the task's files, the starter code for missing ones
   CHECK(f.read(copy.folder / "helpers.hpp") == "alice's helper");
   CHECK_FALSE(fs::exists(copy.folder / "linked.hpp"));
   REQUIRE(copy.notes.size() == 2);
-  CHECK_THAT(copy.notes[0], Catch::Contains("linked.hpp is a link"));
+  CHECK_THAT(copy.notes[0], lab_catch::Contains("linked.hpp is a link"));
   CHECK_THAT(copy.notes[1],
-             Catch::Contains("explicit_euler.cpp is missing: graded as the starter"));
+             lab_catch::Contains("explicit_euler.cpp is missing: graded as the starter"));
 }
 
 TEST_CASE("Copies have the same digest when their files are the same, and same_files tells",
@@ -108,8 +108,9 @@ TEST_CASE("A task file larger than 1 MB is refused unread, and the copy says so"
   }
   const TaskCopy copy =
       copy_task(find_submission(f.top / "big", f.kit), 2, f.kit, f.top / "work" / "big");
-  CHECK_THAT(copy.problem, Catch::Contains("spring_forces.cpp is 3 MB: a task's file may have at "
-                                           "most 1 MB"));
+  CHECK_THAT(copy.problem,
+             lab_catch::Contains("spring_forces.cpp is 3 MB: a task's file may have at "
+                                 "most 1 MB"));
   CHECK_FALSE(fs::exists(copy.folder / "spring_forces.cpp"));
 }
 
@@ -123,7 +124,7 @@ TEST_CASE("Linked folders are never followed, and a download's one wrapping fold
   const Submission linked = find_submission(f.top / "linked", f.kit);
   CHECK(linked.empty());
   REQUIRE(linked.notes.size() == 1);
-  CHECK_THAT(linked.notes[0], Catch::Contains("tasks/ is a link to a folder: left out"));
+  CHECK_THAT(linked.notes[0], lab_catch::Contains("tasks/ is a link to a folder: left out"));
   f.write(f.top / "partly" / "task1_two_masses" / "spring_damper.cpp", "own");
   fs::create_directory_symlink(f.kit.starter / "task2_four_masses",
                                f.top / "partly" / "task2_four_masses");
@@ -131,7 +132,7 @@ TEST_CASE("Linked folders are never followed, and a download's one wrapping fold
   CHECK(partly.tasks.at(1).found == std::vector<std::string>{"spring_damper.cpp"});
   CHECK(partly.tasks.at(2).found.empty());
   CHECK_THAT(partly.tasks.at(2).notes.at(0),
-             Catch::Contains("task2_four_masses/ is a link to a folder: left out"));
+             lab_catch::Contains("task2_four_masses/ is a link to a folder: left out"));
   // GitHub's "Download ZIP": the repository inside a folder of its own.
   f.write(f.top / "zip" / "springlab-main" / "tasks" / "task2_four_masses" / "spring_forces.cpp",
           "zipped");
@@ -139,5 +140,5 @@ TEST_CASE("Linked folders are never followed, and a download's one wrapping fold
   CHECK(zipped.name == "zip");
   CHECK(zipped.layout == Layout::repository);
   CHECK(zipped.tasks.at(2).found == std::vector<std::string>{"spring_forces.cpp"});
-  CHECK_THAT(zipped.notes.at(0), Catch::Contains("graded the files in springlab-main/"));
+  CHECK_THAT(zipped.notes.at(0), lab_catch::Contains("graded the files in springlab-main/"));
 }

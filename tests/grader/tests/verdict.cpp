@@ -1,9 +1,8 @@
 // Verdicts: only a record carrying the run's secret, followed by a clean exit, counts; every
 // other ending is a failure with its reason.
 #include "verdict.hpp"
+#include "lab_catch.hpp"
 #include "sanitizer.hpp"
-
-#include <catch2/catch.hpp>
 
 #include <csignal>
 
@@ -61,7 +60,7 @@ TEST_CASE("Records without the secret, or from a harness that did not end cleanl
       ended(0, records("pass 12 0\n", "loaded 1\ncomplete 1\nexit 0\n", std::string(32, '0')),
             "8 of 8 tests pass.\nAll tests passed\n"));
   CHECK_FALSE(forged.passed);
-  CHECK_THAT(forged.message, Catch::Contains("ended without a verdict"));
+  CHECK_THAT(forged.message, lab_catch::Contains("ended without a verdict"));
   CHECK_FALSE(verdict_of(ended(1, records("pass 12 0\n"))).passed);
   // Bytes before the records neither hide them nor make them count more.
   CHECK(verdict_of(ended(0, "junk " + secret + " nonsense\n" + records("pass 1 0\n"))).passed);
@@ -75,38 +74,39 @@ TEST_CASE("How the worker ended explains a failure better than the test's first 
         .message;
   };
   CHECK_THAT(why("loaded 1\ncomplete 0\nsignal 11\nstopped the code under test stopped\n"),
-             Catch::StartsWith("crashed: segmentation fault"));
+             lab_catch::StartsWith("crashed: segmentation fault"));
   CHECK_THAT(why("loaded 0\ncomplete 0\nexit 0\nstopped the code under test stopped\n"),
-             Catch::Contains("ended while your code was being loaded"));
+             lab_catch::Contains("ended while your code was being loaded"));
   CHECK_THAT(why("loaded 1\ncomplete 0\nexit 0\nstopped the code under test stopped\n"),
-             Catch::Contains("exited before the test finished (exit status 0)"));
+             lab_catch::Contains("exited before the test finished (exit status 0)"));
   CHECK_THAT(why("loaded 1\ncomplete 0\nexit 0\nstopped forbidden 59\n"),
-             Catch::Contains("(" + system_call_name(59) + ")"));
+             lab_catch::Contains("(" + system_call_name(59) + ")"));
   CHECK_THAT(why("loaded 0\ncomplete 0\nexit 0\nstopped refused your code loaded x\n"),
-             Catch::Contains("not run: your code loaded x"));
+             lab_catch::Contains("not run: your code loaded x"));
   CHECK_THAT(why("loaded 1\ncomplete 0\nsignal 9\nmemory 1024\n"),
-             Catch::Contains("used more than 1024 MB of memory"));
+             lab_catch::Contains("used more than 1024 MB of memory"));
   CHECK_THAT(why("loaded 1\ncomplete 1\nexit 0\nstopped call 3 was shear_springs\n"),
-             Catch::Contains("could not be checked: call 3 was shear_springs"));
+             lab_catch::Contains("could not be checked: call 3 was shear_springs"));
   CHECK(why("loaded 1\ncomplete 1\nexit 0\n") == "threw: the code under test stopped");
   CHECK_THAT(why("loaded 1\ncomplete 0\nexit 1\n",
                  "==1==ERROR: AddressSanitizer: SEGV on unknown address 0x0\n"),
-             Catch::StartsWith("memory error: an access to an address"));
+             lab_catch::StartsWith("memory error: an access to an address"));
 }
 
 TEST_CASE("Limits the grader enforces on the test's processes say what was hit", "[verdict]") {
   Outcome crashed;
   crashed.signal = SIGSEGV;
-  CHECK_THAT(verdict_of(crashed).message, Catch::Contains("ended without a verdict"));
+  CHECK_THAT(verdict_of(crashed).message, lab_catch::Contains("ended without a verdict"));
   Outcome slow;
   slow.stopped = Stop::wall_time;
   slow.wall_seconds = 2.04;
-  CHECK_THAT(verdict_of(slow).message,
-             Catch::Contains("timed out: stopped after 2 s (the limit is 10 times the reference's "
-                             "time, at least 2 s"));
+  CHECK_THAT(
+      verdict_of(slow).message,
+      lab_catch::Contains("timed out: stopped after 2 s (the limit is 10 times the reference's "
+                          "time, at least 2 s"));
   Outcome flood;
   flood.stopped = Stop::output;
-  CHECK_THAT(verdict_of(flood).message, Catch::Contains("printed more than 8 MB"));
+  CHECK_THAT(verdict_of(flood).message, lab_catch::Contains("printed more than 8 MB"));
 }
 
 TEST_CASE("Sanitizer reports become sentences naming the student's function and line",
@@ -127,11 +127,12 @@ TEST_CASE("Sanitizer reports become sentences naming the student's function and 
       "==1==ERROR: AddressSanitizer: stack-use-after-scope on address 0x7\n"
       "READ of size 8 at 0x7 thread T0\n"
       "    #0 0x7f in springlab::submission::f() /w/tasks/task2_four_masses/a.cpp:7:3\n";
-  CHECK_THAT(explain_sanitizer_report(scope),
-             Catch::StartsWith("memory error (stack-use-after-scope): your code reads 8 bytes of "
-                               "a value whose lifetime had ended in f "
-                               "(tasks/task2_four_masses/a.cpp, line 7)") &&
-                 Catch::Contains("Vec2 x = a + b;"));
+  CHECK_THAT(
+      explain_sanitizer_report(scope),
+      lab_catch::StartsWith("memory error (stack-use-after-scope): your code reads 8 bytes of "
+                            "a value whose lifetime had ended in f "
+                            "(tasks/task2_four_masses/a.cpp, line 7)") &&
+          lab_catch::Contains("Vec2 x = a + b;"));
   CHECK(explain_sanitizer_report("/w/tasks/task1_two_masses/a.cpp:5:12: runtime error: signed "
                                  "integer overflow: 2147483647 + 1\n") ==
         "undefined behaviour (tasks/task1_two_masses/a.cpp, line 5): signed integer overflow: "

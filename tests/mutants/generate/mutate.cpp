@@ -19,6 +19,7 @@
 #include "cpp_lexer.hpp"
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
