@@ -58,10 +58,10 @@ function(springlab_object out ns tree rel)
   else()  # a student's file: warn, never fail the build; full debug information, to step
     # through it in a debugger (the kit's own code has line tables only, -g1: a third faster
     # to compile, and enough for backtraces and the sanitizers' reports)
-    target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS} -g)
+    target_compile_options(${target} PRIVATE ${SPRINGLAB_WARNINGS} ${SPRINGLAB_DEBUG_INFO})
   endif()
   set(pch_group solutions)
-  if(NOT ns STREQUAL "reference" AND NOT SPRINGLAB_SANITIZE_ALL)
+  if(NOT ns STREQUAL "reference" AND NOT SPRINGLAB_SANITIZE_ALL AND NOT MSVC)
     target_compile_options(${target} PRIVATE -fno-sanitize=undefined)  # see tests/CMakeLists.txt
     set(pch_group solutions_without_ubsan)
   endif()

@@ -3,6 +3,7 @@
 // does not know, 2 bad input, 3 diverged, 4 task not written yet, 6 the output could not be
 // written (a full disk, a closed pipe: the run stops rather than lose rows without a word).
 #include "runner/csv.hpp"
+#include "runner/system.hpp"
 #include "springlab/cli_values.hpp"
 #include "springlab/comparison.hpp"
 #include "springlab/errors.hpp"
@@ -18,9 +19,6 @@
 #include "springlab/stability.hpp"
 
 #include <CLI/CLI.hpp>
-
-#include <sys/resource.h>
-#include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
@@ -100,12 +98,7 @@ std::string parameter_list() {
   return out.str();
 }
 
-// The most memory this process has had resident so far, MiB.
-long peak_resident_mib() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return std::lround(double(usage.ru_maxrss) / 1024.0);  // ru_maxrss is in KiB on Linux
-}
+using runner::peak_resident_mib;
 
 std::string counted(std::size_t n, const std::string& thing) {
   return std::to_string(n) + " " + thing + (n == 1 ? "" : "s");
@@ -328,7 +321,7 @@ int print_estimate(Simulation& sim, long steps) {
 
 Progress::Settings progress_settings() {
   Progress::Settings settings;
-  settings.terminal = isatty(STDERR_FILENO) == 1;
+  settings.terminal = runner::stderr_is_terminal();
   return settings;
 }
 
@@ -340,23 +333,11 @@ volatile std::sig_atomic_t stop_signal = 0;
 
 extern "C" void ask_to_stop(int signal) {
   stop_signal = signal;
-  // Only async-signal-safe calls here: write(2) of a fixed text.
+  // Only async-signal-safe calls here: a write of a fixed text.
   static const char said[] =
       "springlab-run: stopping after the current step (a large grid's step can take a while); "
       "the same signal again stops it at once\n";
-  [[maybe_unused]] const ssize_t n = write(2, said, sizeof said - 1);
-}
-
-void stop_on_signals() {
-  struct sigaction action {};
-  action.sa_handler = ask_to_stop;
-  action.sa_flags = SA_RESTART | SA_RESETHAND;  // writes go on; a second signal kills
-  sigemptyset(&action.sa_mask);
-  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
-    struct sigaction before {};
-    sigaction(signal, nullptr, &before);
-    if (before.sa_handler != SIG_IGN) sigaction(signal, &action, nullptr);  // nohup's stay ignored
-  }
+  runner::write_stderr_in_handler(said, sizeof said - 1);
 }
 
 // The run stopped by a signal: its number and what was done.
@@ -470,10 +451,7 @@ int main(int argc, char** argv) {
   app.add_flag("--stability", options.stability,
                "print omega_max and every integrator's critical step for the scene, and stop");
   app.footer(parameter_list() + exit_codes);
-  // A closed pipe (springlab-run --csv - | head) is then a write error, said and exit 6, rather
-  // than a death by signal with no word.
-  std::signal(SIGPIPE, SIG_IGN);
-  stop_on_signals();
+  runner::stop_on_signals(ask_to_stop);
   // Every message quotes what the user wrote: its control characters are shown, never obeyed.
   const auto say = [](const std::string& message) {
     std::cerr << "springlab-run: " << printable_lines(message) << '\n';
@@ -504,7 +482,7 @@ int main(int argc, char** argv) {
     say(out_of_memory());
     return bad_input;
   } catch (const Stopped& stopped) {
-    say(std::string("stopped by SIG") + sigabbrev_np(stopped.signal) + " " + stopped.where);
+    say(std::string("stopped by SIG") + runner::signal_name(stopped.signal) + " " + stopped.where);
     return 128 + stopped.signal;  // as a shell reports a program its signal ended
   } catch (const std::exception& error) {
     say(std::string("the run stopped on an unexpected error: ") + error.what());
