@@ -252,6 +252,14 @@ int checked_stdout(int code) {
   return code == done ? lost_output : code;
 }
 
+// CLI11 2.5 and later reflow the footer into one paragraph by default, which breaks its lines
+// mid-sentence; earlier versions print it as written, and have no such setting.
+template <class Formatter>
+void footer_as_written(Formatter& formatter) {
+  if constexpr (requires { formatter.enable_footer_formatting(false); })
+    formatter.enable_footer_formatting(false);
+}
+
 constexpr const char* exit_codes =
     "\nExit codes: 0 done, 2 bad input, 3 the run diverged, 4 a task not written yet, 5 no "
     "display, 6 the output could not be written (a full disk, a closed pipe); 1 an unexpected "
@@ -301,6 +309,7 @@ int main(int argc, char** argv) {
   std::string integrators;
   for (const std::string& name : integrator_names())
     integrators += " " + name;
+  footer_as_written(*cli.get_formatter());
   cli.footer("Integrators:" + integrators +
              "\nIn the window: drag a particle to move it, right-click to pin or unpin it, "
              "shift+click to push it;\nwheel to zoom, drag the background to pan; space runs or "
