@@ -33,6 +33,7 @@
 // back to that state every 1000 steps (explicit Euler, unstable at the lab's h on a fabric,
 // every 100) so no run drifts into overflow.
 #include "odeint_system.hpp"
+#include "springlab/avx2.hpp"
 #include "springlab/grid_forces.hpp"
 #include "springlab/parallel.hpp"
 #include "springlab/scene.hpp"
@@ -72,9 +73,8 @@ double wall_seconds() {
 // the difference r_q − r_p, a square root for its length, one division, and the scatter of
 // the result d/|d| to both ends, over the same grid links and rows as the fast path, vectorised
 // by the same compiler with the same AVX2 clone. It reads no velocity and no parameter.
-__attribute__((target_clones("avx2", "default"))) void limit_row(const double* __restrict r,
-                                                                 long first, long offset, int count,
-                                                                 double* __restrict f) {
+SPRINGLAB_AVX2_CLONES void limit_row(const double* __restrict r, long first, long offset, int count,
+                                     double* __restrict f) {
   const double* rp = r + 2 * first;
   const double* rq = rp + 2 * offset;
   for (int j = 0; j < count; ++j) {
@@ -87,11 +87,8 @@ __attribute__((target_clones("avx2", "default"))) void limit_row(const double* _
 
 // The same, added straight to both ends' sums: for links to another row (di > 0), whose two runs
 // never overlap, no round trip through a buffer (as the fast path does there).
-__attribute__((target_clones("avx2", "default"))) void limit_row_into(const double* __restrict r,
-                                                                      long first, long offset,
-                                                                      int count,
-                                                                      double* __restrict p,
-                                                                      double* __restrict q) {
+SPRINGLAB_AVX2_CLONES void limit_row_into(const double* __restrict r, long first, long offset,
+                                          int count, double* __restrict p, double* __restrict q) {
   const double* rp = r + 2 * first;
   const double* rq = rp + 2 * offset;
   for (int j = 0; j < count; ++j) {
