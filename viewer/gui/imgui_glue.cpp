@@ -75,7 +75,7 @@ std::string panel_font() {
   static bool said = false;
   if (!said) {
     said = true;
-    std::cerr << "springlab-view: no font for the panel found (looked for "
+    std::cerr << "springlab-view: found no font for the panel (looked for "
               << candidates.front().string() << " and " << candidates.size() - 1
               << " others): it uses Dear ImGui's own, which lacks the symbols ω, ≈, ℓ and —. "
                  "Installing DejaVu Sans brings them back.\n";
