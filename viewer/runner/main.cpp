@@ -319,6 +319,17 @@ int print_estimate(Simulation& sim, long steps) {
   return done;
 }
 
+// CLI11 2.5 and later wrap each option's description at 65 columns and reflow the footer (the
+// parameter table) into one paragraph; earlier versions print both as written, and have neither
+// setting. The help reads the same with every version (issue 36: CLI11 2.6 on Debian sid).
+template <class Formatter>
+void help_as_written(Formatter& formatter) {
+  if constexpr (requires { formatter.right_column_width(std::size_t{1000}); })
+    formatter.right_column_width(1000);
+  if constexpr (requires { formatter.enable_footer_formatting(false); })
+    formatter.enable_footer_formatting(false);
+}
+
 Progress::Settings progress_settings() {
   Progress::Settings settings;
   settings.terminal = runner::stderr_is_terminal();
@@ -450,6 +461,7 @@ int main(int argc, char** argv) {
                "time the first steps, print how long the whole run would take, and stop");
   app.add_flag("--stability", options.stability,
                "print omega_max and every integrator's critical step for the scene, and stop");
+  help_as_written(*app.get_formatter());
   app.footer(parameter_list() + exit_codes);
   runner::stop_on_signals(ask_to_stop);
   // Every message quotes what the user wrote: its control characters are shown, never obeyed.
