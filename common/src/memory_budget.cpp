@@ -7,8 +7,12 @@
 // What the system says of memory: Linux's /proc and cgroups, POSIX's limits and page counts,
 // Windows' own call; where a source does not exist (/proc on macOS) it limits nothing.
 #if defined(_WIN32)
-#define NOMINMAX
+#ifndef NOMINMAX
+#define NOMINMAX  // no min and max macros: std::min and std::max stay usable
+#endif
+#ifndef WIN32_LEAN_AND_MEAN
 #define WIN32_LEAN_AND_MEAN
+#endif
 #include <windows.h>
 #else
 #include <pthread.h>

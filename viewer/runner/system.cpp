@@ -6,8 +6,12 @@
 #include <string>
 
 #if defined(_WIN32)
-#define NOMINMAX
+#ifndef NOMINMAX
+#define NOMINMAX  // no min and max macros: std::min and std::max stay usable
+#endif
+#ifndef WIN32_LEAN_AND_MEAN
 #define WIN32_LEAN_AND_MEAN
+#endif
 #include <io.h>
 #include <psapi.h>
 #include <windows.h>
