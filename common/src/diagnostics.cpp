@@ -9,7 +9,7 @@ namespace springlab {
 // Both sums run over fixed blocks (parallel.hpp): on two threads for large scenes, with the
 // same result for any thread count, and exactly the plain sum below sum_block items.
 double kinetic_energy(const Eigen::VectorXd& mass, const Vectors& v) {
-  return sum_blocks(v.cols(), [&](long begin, long end) {
+  return sum_blocks(long(v.cols()), [&](long begin, long end) {
     return 0.5 * mass.segment(begin, end - begin)
                      .dot(v.middleCols(begin, end - begin).colwise().squaredNorm().transpose());
   });

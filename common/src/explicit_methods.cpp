@@ -14,7 +14,7 @@ class SymplecticEuler final : public Integrator {
   void step(const Model& model, double h, Vectors& r, Vectors& v) override {
     const Vectors& a = model.acceleration(r, v);
     // Element-wise, so split over threads on large scenes with the same result.
-    for_blocks(r.cols(), [&](long begin, long end) {
+    for_blocks(long(r.cols()), [&](long begin, long end) {
       const long count = end - begin;
       v.middleCols(begin, count) += h * a.middleCols(begin, count);
       r.middleCols(begin, count) += h * v.middleCols(begin, count);
@@ -30,7 +30,7 @@ class RungeKutta4 final : public Integrator {
   std::string_view name() const override { return "rk4"; }
   void step(const Model& model, double h, Vectors& r, Vectors& v) override {
     const auto& a = model.acceleration;
-    const long n = r.cols();
+    const long n = long(r.cols());
     for (Vectors* storage : {&k1v_, &k2r_, &k2v_, &k3r_, &k3v_, &k4r_, &k4v_, &stage_r_})
       storage->resize(2, n);  // before any thread writes its block
     // Each stage's position goes into stage_r_, storage kept between steps: an argument such

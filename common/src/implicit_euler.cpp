@@ -109,7 +109,7 @@ void ImplicitEuler::prepare(const Model& model) {
   for (std::size_t i = 0; i < model.pinned.size(); ++i)
     if (model.pinned[i]) pinned_.push_back(int(i));
   pattern_built_ = false;
-  const long n = model.mass.size();
+  const long n = long(model.mass.size());
   incident_start_.assign(std::size_t(n) + 1, 0);
   for (const Spring& s : model.springs)
     ++incident_start_[std::size_t(s.p) + 1], ++incident_start_[std::size_t(s.q) + 1];
@@ -147,7 +147,7 @@ void ImplicitEuler::for_springs_of(long i, Each&& each) const {
 }
 
 void ImplicitEuler::linearise(const Model& model, const Vectors& r, const Vectors& v, double h) {
-  const long n = r.cols(), springs = long(model.springs.size());
+  const long n = long(r.cols()), springs = long(model.springs.size());
   blocks_.resize(std::size_t(springs));
   // Spring i's block S, kept, and its pull B (v_p − v_q), returned.
   const auto linearise_spring = [&](long i) -> Vec2 {
@@ -203,7 +203,7 @@ void ImplicitEuler::multiply(const Model& model, const Vectors& x, Vectors& prod
     const double dx = x(0, b.p) - x(0, b.q), dy = x(1, b.p) - x(1, b.q);
     return Vec2(b.xx * dx + b.xy * dy, b.xy * dx + b.yy * dy);
   };
-  const long n = x.cols();
+  const long n = long(x.cols());
   product.resize(2, n);
   if (splits(n)) {  // each spring's term once, then each particle gathers its springs'
     fill_per_spring(long(model.springs.size()), term);
@@ -335,7 +335,7 @@ void ImplicitEuler::step(const Model& model, double h, Vectors& r, Vectors& v) {
   if (free_.size() == 0) return;
   const Vectors& a = model.acceleration(r, v);
   linearise(model, r, v, h);
-  const long n = r.cols();
+  const long n = long(r.cols());
   rhs_.resize(2, n);
   // h f_n − h² K v_n, and its norm.
   const double scale = std::sqrt(sum_blocks(n, [&](long begin, long end) {

@@ -80,7 +80,7 @@ template <class Multiply>
 bool conjugate_gradients(Multiply&& multiply, const Vectors& inverse_diagonal, const Vectors& b,
                          Vectors& x, double tolerance, int max_iterations,
                          ConjugateGradientStorage& cg) {
-  const long n = b.cols();
+  const long n = long(b.cols());
   const double b_norm2 =
       sum_blocks(n, [&](long begin, long end) { return flat(b, begin, end).squaredNorm(); });
   if (b_norm2 == 0.0) {

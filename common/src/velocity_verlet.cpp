@@ -93,7 +93,7 @@ void VelocityVerlet::step(const Model& model, double h, Vectors& r, Vectors& v) 
   prepare(model, h);
   if (!state_is_last_steps(r, v)) acceleration_ = model.acceleration(r, v);
   // Element-wise: split over threads on large scenes with the same result.
-  for_blocks(r.cols(), [&](long begin, long end) {
+  for_blocks(long(r.cols()), [&](long begin, long end) {
     const long count = end - begin;
     const auto a = acceleration_.middleCols(begin, count);
     auto vb = v.middleCols(begin, count);

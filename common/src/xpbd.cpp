@@ -189,7 +189,7 @@ class Xpbd final : public Integrator {
   void restart() override { springs_ = nullptr; }
 
   void step(const Model& model, double h, Vectors& r, Vectors& v) override {
-    const long n = r.cols();
+    const long n = long(r.cols());
     const int substeps = std::max(1, parameters_.substeps);
     const int iterations = std::max(1, parameters_.iterations);
     const double s = h / substeps;

@@ -12,9 +12,10 @@
 #ifndef WIN32_LEAN_AND_MEAN
 #define WIN32_LEAN_AND_MEAN
 #endif
+#include <windows.h>
+// After windows.h, which defines the types they use.
 #include <io.h>
 #include <psapi.h>
-#include <windows.h>
 #else
 #include <sys/resource.h>
 #include <unistd.h>
