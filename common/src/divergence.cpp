@@ -42,7 +42,11 @@ constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 // A component below rounding of the other (1e-12 of the length) is written 0.
 std::string vector_text(const Vec2& v) {
   const auto component = [&](double x) { return std::abs(x) <= 1e-12 * v.norm() ? 0.0 : x; };
-  return "(" + significant(component(v.x())) + ", " + significant(component(v.y())) + ")";
+  std::string text = "(";  // appended: GCC 12 at -O3 warns falsely about "(" + std::string
+  return text.append(significant(component(v.x())))
+      .append(", ")
+      .append(significant(component(v.y())))
+      .append(")");
 }
 
 std::string method_name(std::string_view integrator) {
