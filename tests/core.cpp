@@ -374,8 +374,8 @@ TEST_CASE("Memory guard: a thread's stack is read from OMP_STACKSIZE as libgomp 
   const char* saved_omp = std::getenv("OMP_STACKSIZE");
   const char* saved_gomp = std::getenv("GOMP_STACKSIZE");
   const std::string omp = saved_omp ? saved_omp : "", gomp = saved_gomp ? saved_gomp : "";
-  unsetenv("OMP_STACKSIZE");
-  unsetenv("GOMP_STACKSIZE");
+  set_environment("OMP_STACKSIZE", nullptr);
+  set_environment("GOMP_STACKSIZE", nullptr);
   const double guard = 4 * 1024.0, default_stack = one_thread_stack_bytes();
   CHECK(default_stack >= 16 * 1024.0 + guard);  // glibc's smallest stack at least
   const double k = 1024.0, m = k * k;
@@ -393,18 +393,18 @@ TEST_CASE("Memory guard: a thread's stack is read from OMP_STACKSIZE as libgomp 
                                                              {"", default_stack - guard}};
   for (const auto& [text, bytes] : cases) {
     CAPTURE(text);
-    setenv("OMP_STACKSIZE", text, 1);
+    set_environment("OMP_STACKSIZE", text);
     CHECK(one_thread_stack_bytes() == bytes + guard);
   }
-  unsetenv("OMP_STACKSIZE");
-  setenv("GOMP_STACKSIZE", "3M", 1);  // libgomp's own name, read when OMP_STACKSIZE is unset
+  set_environment("OMP_STACKSIZE", nullptr);
+  set_environment("GOMP_STACKSIZE", "3M");  // libgomp's own name, read when OMP_STACKSIZE is unset
   CHECK(one_thread_stack_bytes() == 3 * m + guard);
-  setenv("OMP_STACKSIZE", "5M", 1);
+  set_environment("OMP_STACKSIZE", "5M");
   CHECK(one_thread_stack_bytes() == 5 * m + guard);
-  unsetenv("OMP_STACKSIZE");
-  unsetenv("GOMP_STACKSIZE");
-  if (saved_omp) setenv("OMP_STACKSIZE", omp.c_str(), 1);
-  if (saved_gomp) setenv("GOMP_STACKSIZE", gomp.c_str(), 1);
+  set_environment("OMP_STACKSIZE", nullptr);
+  set_environment("GOMP_STACKSIZE", nullptr);
+  if (saved_omp) set_environment("OMP_STACKSIZE", omp.c_str());
+  if (saved_gomp) set_environment("GOMP_STACKSIZE", gomp.c_str());
 }
 
 TEST_CASE("Memory guard: the process's limit is found", "[core][memory]") {

@@ -104,9 +104,9 @@ namespace {
 // Positions after `steps` steps of p with the projections computed one way (xpbd.cpp:
 // SPRINGLAB_XPBD_PATH "one", "chunks", or "" for the default, four at a time with AVX2).
 Vectors positions_with(const std::string& path, Scene scene, long steps) {
-  if (!path.empty()) ::setenv("SPRINGLAB_XPBD_PATH", path.c_str(), 1);
+  if (!path.empty()) set_environment("SPRINGLAB_XPBD_PATH", path.c_str());
   Simulation sim(std::move(scene), implementation());
-  ::unsetenv("SPRINGLAB_XPBD_PATH");
+  set_environment("SPRINGLAB_XPBD_PATH", nullptr);
   run(sim, steps, [](const Simulation&) {});
   return sim.particles().position;
 }

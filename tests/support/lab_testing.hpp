@@ -10,6 +10,7 @@
 #include "springlab/stability.hpp"
 #include "springlab/types.hpp"
 
+#include <cstdlib>
 #include <functional>
 #include <random>
 #include <sstream>
@@ -29,6 +30,19 @@ struct StringMaker<springlab::Vec2> {
 }  // namespace Catch
 
 namespace springlab::testing {
+
+/// Sets (or, with nullptr, removes) an environment variable of this process, on POSIX systems and
+/// Windows alike (Windows has no setenv: an empty value removes it there).
+inline void set_environment(const char* name, const char* value) {
+#if defined(_WIN32)
+  _putenv_s(name, value ? value : "");
+#else
+  if (value)
+    setenv(name, value, 1);
+  else
+    unsetenv(name);
+#endif
+}
 
 /// The lab's values (SceneParameters' defaults: h = 0.01 s, m = 0.2 kg, k = 20 N/m, ...).
 inline const SceneParameters lab_values;
