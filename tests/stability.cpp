@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <string>
+#include <string_view>
 
 using namespace springlab;
 using namespace springlab::testing;
@@ -26,12 +28,15 @@ SceneParameters scene_named(const std::string& name) {
   return fabric_10x10(lab_values.step, "rk4");
 }
 
-// Linearised once per scene: the 10x10 eigen-solves are the slow part of these tests.
-const LinearModel& model_of(const std::string& scene) {
-  static std::map<std::string, LinearModel> models;
+// Linearised once per scene: the 10x10 eigen-solves are the slow part of these tests. The name is
+// a view: GCC 14's -Wdangling-reference takes a string made for the call for the result's referent.
+const LinearModel& model_of(std::string_view scene) {
+  static std::map<std::string, LinearModel, std::less<>> models;
   auto found = models.find(scene);
-  if (found == models.end())
-    found = models.emplace(scene, linearise_at_rest(scene_named(scene), implementation())).first;
+  if (found == models.end()) {
+    const std::string name(scene);
+    found = models.emplace(name, linearise_at_rest(scene_named(name), implementation())).first;
+  }
   return found->second;
 }
 

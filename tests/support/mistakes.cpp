@@ -30,8 +30,8 @@ std::string recognise(double got, const std::vector<Suspect<double>>& suspects, 
   if (!std::isfinite(got))
     return "likely mistake: the value is not a finite number (a division "
            "by zero, or a square root of a negative number?)";
-  return first_match(
-      suspects, [got](double v) { return std::abs(got - v); }, tolerance);
+  const auto distance = [got](double v) { return std::abs(got - v); };
+  return first_match(suspects, distance, tolerance);
 }
 
 std::string recognise(const Vec2& got, const std::vector<Suspect<Vec2>>& suspects,
@@ -39,8 +39,8 @@ std::string recognise(const Vec2& got, const std::vector<Suspect<Vec2>>& suspect
   if (!got.allFinite())
     return "likely mistake: the vector is not finite (a division by zero "
            "length, or a square root of a negative number?)";
-  return first_match(
-      suspects, [&got](const Vec2& v) { return (got - v).norm(); }, tolerance);
+  const auto distance = [&got](const Vec2& v) { return (got - v).norm(); };
+  return first_match(suspects, distance, tolerance);
 }
 
 std::string recognise(const Vectors& got, const std::vector<Suspect<Vectors>>& suspects,

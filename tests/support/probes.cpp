@@ -338,7 +338,8 @@ std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
            "cleared (set to zero) first, or overwritten)";
   if (!added) {
     // The same multiple in every trial, or a multiple that follows the spring's own values.
-    const auto constant = [](const std::vector<Fitted>& fits, double Fitted::*c) {
+    using Coefficient = double Fitted::*;
+    const auto constant = [](const std::vector<Fitted>& fits, Coefficient c) {
       for (const Fitted& x : fits)
         if (!x.fits || std::abs(x.*c - fits.front().*c) > 1e-7 * (1 + std::abs(x.*c))) return false;
       return true;

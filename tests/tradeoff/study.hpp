@@ -28,8 +28,9 @@ struct StudyOptions {
   int repeats = 3;         ///< wall time is the minimum over this many runs
   double duration = 5.12;  ///< s, 512 lab steps: a whole number of every step in the sweep
   double sample = 0.04;    ///< s, the output times errors are measured at (a multiple of h ≤ it)
-  int k_min = -6, k_max = 5;  ///< steps h = h_lab·2^k
-  int k_min_fabric = -6;      ///< the fabric's smallest k: its runs at tiny steps cost the most
+  /// Steps h = h_lab·2^k from k_min to k_max.
+  int k_min = -6, k_max = 5;
+  int k_min_fabric = -6;  ///< the fabric's smallest k: its runs at tiny steps cost the most
   std::vector<double> tolerances{1e-3, 1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10};
   std::vector<std::string> scenes{"two-masses", "grid", "fabric"};
 };

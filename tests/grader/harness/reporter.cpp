@@ -82,7 +82,7 @@ struct Context {
 Context context_of(const Catch::AssertionStats& stats) {
   Context c;
   for (const Catch::MessageInfo& m : stats.infoMessages) {
-    if (m.message.empty() || m.message == stats.assertionResult.getMessage()) continue;
+    if (m.message.empty() || m.message == std::string(stats.assertionResult.getMessage())) continue;
     if (m.macroName == "CAPTURE") {
       std::string value = m.message;
       if (const auto at = value.find(" := "); at != std::string::npos) value.replace(at, 4, " = ");
@@ -108,7 +108,7 @@ std::string explain(const Catch::AssertionStats& stats) {
   const std::string macro(result.getTestMacroName());
   if (result.getResultType() == Catch::ResultWas::ThrewException) {
     // A task not written yet needs no more than its message.
-    const std::string what = result.getMessage();
+    const std::string what(result.getMessage());
     if (what.find("is not implemented yet") != std::string::npos) return what;
     add("checked: ", c.checked);
     if (macro.find("THROWS_AS") != std::string::npos) {
@@ -128,7 +128,7 @@ std::string explain(const Catch::AssertionStats& stats) {
                           : "an exception");
   } else if (result.getResultType() == Catch::ResultWas::ExplicitFailure) {
     add("checked: ", c.checked);
-    add("", result.getMessage());  // the test's own words: got and expected
+    add("", std::string(result.getMessage()));  // the test's own words: got and expected
   } else {
     add("checked: ", c.checked);
     add("", c.compared);

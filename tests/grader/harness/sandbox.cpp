@@ -92,7 +92,7 @@ bool forbid_what_tests_never_need(void (*on_forbidden)(long number)) {
   // one, whatever the size of a scene a test builds.
   springlab::set_thread_count(1);
   report_forbidden = on_forbidden;
-  struct sigaction action {};
+  struct sigaction action = {};
   action.sa_sigaction = report_and_end;
   action.sa_flags = SA_SIGINFO;
   sigaction(SIGSYS, &action, nullptr);
@@ -163,7 +163,7 @@ std::uint64_t handled_rights(long abi) {
 bool allow(int ruleset, const std::string& path, std::uint64_t rights) {
   const int fd = ::open(path.c_str(), O_PATH | O_CLOEXEC);
   if (fd < 0) return errno == ENOENT;  // a folder this system does not have
-  struct stat info {};
+  struct stat info = {};
   ::fstat(fd, &info);
   landlock_path_beneath_attr rule{};
   rule.allowed_access = S_ISDIR(info.st_mode)

@@ -99,7 +99,7 @@ std::string task_signature(const Kit& kit, const std::vector<TestInfo>& tests, i
 
 // Why the work folder cannot take more ("" when it can): less than 16 MB or 64 files free.
 std::string work_folder_full(const fs::path& work) {
-  struct statvfs space {};
+  struct statvfs space = {};
   if (::statvfs(work.c_str(), &space) != 0) return "";
   const double free_mb = double(space.f_bavail) * double(space.f_frsize) / double(1 << 20);
   if (free_mb >= 16.0 && space.f_favail >= 64) return "";

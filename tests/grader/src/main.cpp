@@ -523,7 +523,7 @@ int main(int argc, char** argv) {
   options.tasks.erase(std::unique(options.tasks.begin(), options.tasks.end()), options.tasks.end());
   // Ctrl-C, a terminal closed, kill: every test process is killed before the grader ends (and
   // with it, should it be killed outright: each has the grader's death as its own).
-  struct sigaction stop {};
+  struct sigaction stop = {};
   stop.sa_handler = stop_on_signal;
   for (const int signal : {SIGINT, SIGTERM, SIGHUP})
     sigaction(signal, &stop, nullptr);

@@ -83,7 +83,7 @@ void set_limit(int resource, rlim_t soft, rlim_t hard) {
   if (moved_secret >= 0) ::dup2(moved_secret, 4);
   // Nothing else the grader inherited (a terminal's, a CI runner's descriptors) reaches the child.
   ::close_range(moved_secret >= 0 ? 5 : moved_records >= 0 ? 4 : 3, ~0U, CLOSE_RANGE_CLOEXEC);
-  struct sigaction standard {};
+  struct sigaction standard = {};
   standard.sa_handler = SIG_DFL;
   ::sigaction(SIGPIPE, &standard, nullptr);
   sigset_t none;
@@ -313,7 +313,7 @@ void ProcessPool::Impl::step() {
 
 ProcessPool::ProcessPool(int parallel) : impl_(std::make_unique<Impl>()) {
   impl_->parallel = std::max(1, parallel);
-  struct sigaction ignore {};
+  struct sigaction ignore = {};
   ignore.sa_handler = SIG_IGN;
   ::sigaction(SIGPIPE, &ignore, nullptr);  // a child gone before its secret arrived
 }

@@ -297,9 +297,10 @@ std::string results_json(const SubmissionResult& result, double seconds) {
         output += printable(r.problem);
       else if (!t.passed)
         output += failure_text(t, 8192);
-      json tags = json::array({"task" + std::to_string(task)});
+      const std::string own = "task" + std::to_string(task);
+      json tags = json::array({own});
       for (const std::string& tag : t.test->tags)
-        if (tag != tags.front()) tags.push_back(tag);
+        if (tag != own) tags.push_back(tag);
       if (t.test->hidden && std::find(tags.begin(), tags.end(), "hidden") == tags.end())
         tags.push_back("hidden");
       tests.push_back({{"name", "Task " + std::to_string(task) + ": " + t.test->name},

@@ -101,8 +101,12 @@ std::string explain_sanitizer_report(const std::string& output) {
   const std::string kind = heading.substr(0, heading.find(' '));
   const std::string place = where(report);
   if (kind == "heap-buffer-overflow" || kind == "global-buffer-overflow") {
-    const bool after = report.find("to the right of") != std::string::npos;
-    const bool before = report.find("to the left of") != std::string::npos;
+    // "0 bytes to the right of 64-byte region" (GCC 12's AddressSanitizer), "after" (GCC 14's).
+    const auto says = [&report](const char* words) {
+      return report.find(words) != std::string::npos;
+    };
+    const bool after = says(" bytes to the right of ") || says(" bytes after ");
+    const bool before = says(" bytes to the left of ") || says(" bytes before ");
     return "memory error (" + kind + "): your code " + access(report) + " " +
            (after    ? "just past the end of an array (a loop one step too far, or an index out "
                        "of range?)"

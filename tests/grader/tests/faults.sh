@@ -28,7 +28,9 @@ chmod 000 "$scratch/class/unreadable"
 cp -r "$kit/solutions" "$scratch/class/vanishing"
 cp -r "$kit/solutions" "$scratch/class/too-big"
 for i in $(seq 1 60); do head -c 1000000 /dev/zero >"$scratch/class/too-big/task1_two_masses/data$i.bin"; done
-mount -t tmpfs -o size=48m tmpfs "$scratch/disk"
+# Root without the right to mount (a container, a root without util-linux's mount) skips too.
+mount -t tmpfs -o size=48m tmpfs "$scratch/disk" ||
+  { echo "faults: skipped: cannot mount a tmpfs"; exit 77; }
 chmod 777 "$scratch" "$scratch/class" "$scratch/disk" "$scratch/full"
 as_nobody=(setpriv --reuid=65534 --regid=65534 --clear-groups)
 # The reference's times measured again, so that the vanishing folder can go while they are: with a

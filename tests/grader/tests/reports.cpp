@@ -160,7 +160,7 @@ TEST_CASE("results.json: a hidden test is shown after the due date, and its resu
   CHECK_THAT(output, !lab_catch::Contains("secret") && !lab_catch::Contains("Hooke"));
 }
 
-TEST_CASE("Feedback: an instructor sees the hidden tests marked; the visible part has none",
+TEST_CASE("Feedback: an instructor sees the hidden tests marked, and the visible part has none",
           "[reports][hidden]") {
   Kit kit;
   kit.task_files = {{1, {"task1_two_masses/spring_damper.cpp"}}};
@@ -176,7 +176,7 @@ TEST_CASE("Feedback: an instructor sees the hidden tests marked; the visible par
   CHECK_THAT(text, lab_catch::Contains("1 of 1 tests pass (1 of 1 points)."));
 }
 
-TEST_CASE("Summary: a task not started says what to write first; one that passes says no more",
+TEST_CASE("Summary: a task not started says what to write first, one that passes says no more",
           "[reports]") {
   const std::vector<TestInfo> tests = {{"Spring: one", {"task1"}, 1, 1, 1.0, false},
                                        {"Spring: two", {"task1"}, 1, 2, 1.0, false}};

@@ -123,6 +123,16 @@ TEST_CASE("Sanitizer reports become sentences naming the student's function and 
         "memory error (heap-buffer-overflow): your code writes 8 bytes just past the end of an "
         "array (a loop one step too far, or an index out of range?) in accumulate_spring_forces "
         "(tasks/task2_four_masses/spring_forces.cpp, line 13)");
+  // The same in the words of GCC 14's AddressSanitizer, and an access before the start.
+  std::string after = heap;
+  after.replace(after.find("to the right of"), 15, "after");
+  CHECK(explain_sanitizer_report(after) == explain_sanitizer_report(heap));
+  for (const char* words : {"to the left of", "before"}) {
+    std::string before = heap;
+    before.replace(before.find("to the right of"), 15, words);
+    CHECK_THAT(explain_sanitizer_report(before),
+               lab_catch::Contains("writes 8 bytes before the start of an array"));
+  }
   const std::string scope =
       "==1==ERROR: AddressSanitizer: stack-use-after-scope on address 0x7\n"
       "READ of size 8 at 0x7 thread T0\n"
