@@ -68,8 +68,14 @@ TEST_CASE("Spring: no force at the rest length, in any direction", "[task1][spri
   const double rest = GENERATE(1.0, std::numbers::sqrt2, 0.25);
   const Vec2 r_q(1.0, 2.0);
   CAPTURE(angle, rest);
-  CHECK_THAT(spring_force(r_q + rest * direction(angle), r_q, 7.0, rest),
+  const double k = 7.0;
+  CHECK_THAT(spring_force(r_q + rest * direction(angle), r_q, k, rest),
              IsNear(Vec2::Zero(), 1e-12));
+  // ...and zero there because L = l0, not because it is zero everywhere: 1 % longer, the spring
+  // pulls p back towards q with k (L - l0).
+  const double longer = 1.01 * rest;
+  CHECK_THAT(spring_force(r_q + longer * direction(angle), r_q, k, rest),
+             IsNear(Vec2(-k * (longer - rest) * direction(angle)), 1e-12));
 }
 
 TEST_CASE("Spring: ends in the same place give no force, not NaN", "[task1][spring]") {
@@ -80,6 +86,11 @@ TEST_CASE("Spring: ends in the same place give no force, not NaN", "[task1][spri
                       : "likely mistake: with r_p = r_q the length is 0, and dividing by it gives "
                         "NaN: return a zero force when the ends coincide, as the header says"));
   CHECK_THAT(f, IsNear(Vec2::Zero(), 0.0));
+  // Parted by a millimetre, the spring is squeezed to almost nothing and pushes p away from q
+  // with k (l0 - L): the zero is for coincident ends only.
+  const Vec2 apart(0.0, 1e-3);
+  CHECK_THAT(spring_force(r + apart, r, 20.0, 1.0),
+             IsNear(Vec2(20.0 * (1.0 - apart.norm()) * apart / apart.norm()), 1e-12));
 }
 
 TEST_CASE("Spring: the force on q is minus the force on p", "[task1][spring][momentum]") {
@@ -91,6 +102,9 @@ TEST_CASE("Spring: the force on q is minus the force on p", "[task1][spring][mom
     const double k = 10.0 + 5.0 * unit(engine), rest = 1.0 + 0.4 * unit(engine);
     CAPTURE(trial, r_p, r_q, k, rest);
     CHECK_THAT(spring_force(r_q, r_p, k, rest), IsNear(-spring_force(r_p, r_q, k, rest), 1e-12));
+    // Opposite, and not both zero: each has Hooke's magnitude k |L - l0| (1.1).
+    CHECK_THAT(spring_force(r_p, r_q, k, rest).norm(),
+               WithinAbs(k * std::abs((r_p - r_q).norm() - rest), 1e-12));
   }
 }
 
@@ -222,9 +236,23 @@ TEST_CASE("Two masses: internal forces cancel and momentum is conserved for thou
       two_masses(lab.structural.k, lab.structural.b, lab.mass, 0.3, 0.004, "explicit-euler"),
       implementation());
   scene.particles.velocity << 0.7, -0.1, 0.2, 0.5;
+  // The force that must be there: the spring and damper force on its end p at the start, (1.1),
+  // (1.2).
+  REQUIRE(scene.springs.size() == 1);
+  const Spring s = scene.springs.front();
+  const Vectors r0 = scene.particles.position, v0 = scene.particles.velocity;
+  const Vec2 d = r0.col(s.p) - r0.col(s.q);
+  const Vec2 force =
+      -s.k * (d.norm() - s.rest_length) * d / d.norm() - s.b * (v0.col(s.p) - v0.col(s.q));
+  const double m = scene.particles.mass(s.p), h = scene.parameters.step;
   Simulation sim(std::move(scene), implementation());
   const Vec2 start = sim.diagnostics().momentum;
-  const double worst = momentum_drift(sim, 5000);
+  sim.step();
+  // Conserved because the forces cancel, not because there are none or nothing moves: the first
+  // step changed p's velocity by h F / m (1.5).
+  CHECK_THAT(Vec2(sim.particles().velocity.col(s.p)),
+             IsNear(Vec2(v0.col(s.p) + h * force / m), 1e-12));
+  const double worst = momentum_drift(sim, 4999);
   CAPTURE(start, worst);
   CHECK(worst <= 1e-12);
   CHECK(sim.diagnostics().potential > 0.0);  // it really did move
@@ -242,13 +270,19 @@ TEST_CASE("Two masses: a mirror-symmetric start moves mirror-symmetrically", "[t
   scene.particles.velocity << -0.3, 0.3, 0.4, 0.4;
   Simulation sim(std::move(scene), implementation());
   double worst = 0.0;
+  // They start 1.3 m apart and moving apart; the stretched spring turns them back within half a
+  // period, pi / sqrt(2 k / m), far shorter than the run: without it they would part for ever.
+  const double apart = 1.3;
+  double closest = apart;
   run(sim, 3000, [&](const Simulation& s) {
     const Vectors& r = s.particles().position;
     worst = std::max({worst, std::abs(r(0, 0) + r(0, 1) - 1.0), std::abs(r(1, 0) - r(1, 1))});
+    closest = std::min(closest, (r.col(1) - r.col(0)).norm());
   });
-  CAPTURE(worst);
+  CAPTURE(worst, closest);
   CHECK(worst <= 1e-12);
   CHECK(sim.particles().position(1, 0) > 1.0);  // it really did move upwards
+  CHECK(closest < apart);                       // and the spring pulled them back
 }
 
 TEST_CASE("Explicit Euler converges with order 1 to the exact two-mass solution",

@@ -34,6 +34,12 @@ Vectors summed_forces(const std::vector<Spring>& springs, const Vectors& r, cons
 // rest length: accumulate_spring_forces must use each spring's own values (2.3).
 Scene random_grid(int rows, int cols, bool shear, unsigned seed) {
   Scene scene = build_scene(lab_grid(rows, cols, shear, 0.01, "explicit-euler"), implementation());
+  // The grid's springs, from the code under test: with none, every force below would be a sum
+  // over nothing, and zero forces would pass for right ones.
+  Offsets neighbours{{0, 1}, {1, 0}};
+  if (shear) neighbours.insert(neighbours.end(), {{1, 1}, {1, -1}});
+  INFO("compared: the springs of a " << rows << "x" << cols << " grid, (2.1)");
+  CHECK(scene.springs.size() == expected_pairs(rows, cols, neighbours).size());
   randomise(scene.particles, 0.25, 1.0, seed);
   std::mt19937 engine(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
@@ -232,16 +238,44 @@ TEST_CASE("Spring forces: internal forces sum to zero, and without dampers their
   for (int i = 0; i < r.cols(); ++i)
     torque += r(0, i) * central(1, i) - r(1, i) * central(0, i);
   CHECK_THAT(torque, WithinAbs(0.0, 1e-11));
+  // Zero sums of forces that are there: each spring's pair of forces has the virial
+  // (r_p - r_q) . F_pq = -k (L - l0) L (1.1), so sum r_i . F_i is the sum of those.
+  double virial = 0.0, expected = 0.0;
+  for (const Spring& s : scene.springs) {
+    const double length = (r.col(s.p) - r.col(s.q)).norm();
+    expected -= s.k * (length - s.rest_length) * length;
+  }
+  for (int i = 0; i < r.cols(); ++i)
+    virial += r.col(i).dot(central.col(i));
+  CHECK_THAT(virial, WithinRel(expected, 1e-9));
 }
 
 TEST_CASE("Grid: total momentum is conserved over thousands of steps", "[task2][momentum]") {
   INFO("equation (2.4): no net internal force, so P = sum m_i v_i never changes");
   Scene scene = random_grid(2, 2, false, 41);
   scene.parameters.step = 0.004;  // below explicit Euler's limit for this grid
+  // The forces at the start: the springs' -dE/dr_i and the dampers' -sum b (v_i - v_j) (2.3).
+  const Vectors r0 = scene.particles.position, v0 = scene.particles.velocity;
+  Vectors force = energy_force(scene.springs, r0);
+  for (const Spring& s : scene.springs) {
+    force.col(s.p) -= s.b * (v0.col(s.p) - v0.col(s.q));
+    force.col(s.q) -= s.b * (v0.col(s.q) - v0.col(s.p));
+  }
+  const double h = scene.parameters.step;
+  const Eigen::VectorXd mass = scene.particles.mass;
   Simulation sim(std::move(scene), implementation());
   const Vec2 start = sim.diagnostics().momentum;
   REQUIRE(start.norm() > 0.1);
-  const double worst = momentum_drift(sim, 5000);
+  sim.step();
+  // Conserved because the forces cancel, not because there are none: the first step changed
+  // each velocity by h F_i / m_i (1.5).
+  for (int i = 0; i < r0.cols(); ++i) {
+    CAPTURE(i);
+    const Vec2 expected = v0.col(i) + h * force.col(i) / mass(i);
+    CHECK_THAT(Vec2(sim.particles().velocity.col(i)),
+               IsNear(expected, 1e-6 * h * (1.0 + force.col(i).norm()) / mass(i)));
+  }
+  const double worst = momentum_drift(sim, 4999);
   CAPTURE(start, worst);
   CHECK(worst <= 1e-12);
 }

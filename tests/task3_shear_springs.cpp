@@ -8,6 +8,7 @@
 #include "springlab/task2_four_masses.hpp"
 #include "springlab/this_implementation.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <numbers>
@@ -18,6 +19,21 @@ using namespace springlab;
 using namespace springlab::testing;
 using lab_catch::WithinAbs;
 using lab_catch::WithinRel;
+
+namespace {
+
+// Both diagonals of every cell (3.1), as many as the code under test gave `scene`: without them
+// the tests of a grid with shear springs would test the structural grid of task 2 again, which a
+// shear_springs that returns nothing passes.
+void check_shear_springs(const Scene& scene) {
+  const int rows = scene.parameters.rows, cols = scene.parameters.cols;
+  const auto shear = std::count_if(scene.springs.begin(), scene.springs.end(),
+                                   [](const Spring& s) { return s.family == SpringFamily::shear; });
+  INFO("compared: the shear springs of the " << rows << "x" << cols << " grid, (3.1)");
+  CHECK(std::size_t(shear) == expected_pairs(rows, cols, {{1, 1}, {1, -1}}).size());
+}
+
+}  // namespace
 
 TEST_CASE("Shear springs: the count, both diagonals of each cell once, no self-springs",
           "[task3][topology]") {
@@ -90,6 +106,7 @@ TEST_CASE("Grid with shear springs: forces are minus the energy gradient and sum
           "[task3][spring][momentum]") {
   INFO("equations (2.3), (3.1): F_i = -dE/dr_i over both families; sum F_i = 0");
   Scene scene = build_scene(lab_grid(3, 3, true, 0.01, "explicit-euler"), implementation());
+  check_shear_springs(scene);
   randomise(scene.particles, 0.25, 1.0, 51);
   const Vectors r = scene.particles.position;
   const Vectors still = Vectors::Zero(2, r.cols());
@@ -126,6 +143,7 @@ TEST_CASE("Grid with shear springs: momentum is conserved over thousands of step
           "[task3][momentum]") {
   INFO("equation (2.4) over both families: P = sum m_i v_i never changes");
   Scene scene = build_scene(lab_grid(3, 3, true, 0.003, "explicit-euler"), implementation());
+  check_shear_springs(scene);
   randomise(scene.particles, 0.2, 0.8, 61);
   Simulation sim(std::move(scene), implementation());
   const Vec2 start = sim.diagnostics().momentum;
@@ -139,6 +157,7 @@ TEST_CASE("Grid with shear springs: a symmetric start moves symmetrically", "[ta
   INFO("mirroring the grid about its diagonal mirrors the motion: [i,j] <-> [j,i]");
   const int n = 3;
   Scene scene = build_scene(lab_grid(n, n, true, 0.003, "explicit-euler"), implementation());
+  check_shear_springs(scene);
   // Grid positions (col, -row) mirror about the line y = -x; move particles symmetrically.
   const auto mirror = [](const Vec2& a) { return Vec2(-a.y(), -a.x()); };
   Vectors& r = scene.particles.position;
@@ -169,6 +188,7 @@ TEST_CASE("Grid with shear springs: explicit Euler grows at the rate the linear 
   const int which = GENERATE(0, 1, 2);  // the lab step, just above the limit, just below it
   const double h = std::array{p.step, 1.1 * limit, 0.9 * limit}[std::size_t(which)];
   Scene scene = perturbed_at_rest(p, implementation(), 1e-9, 6);
+  check_shear_springs(scene);
   scene.parameters.step = h;
   const double predicted = explicit_euler_growth_factor(model, h);
   const double measured =

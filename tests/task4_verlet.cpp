@@ -42,6 +42,20 @@ double largest(const Vectors& a) {
   return a.lpNorm<Eigen::Infinity>();
 }
 
+// The step (4.1)-(4.2) solves, exactly, for the oscillator: a = -w2 r - c v makes (4.1) with
+// (4.2) linear in r_{n+1}:  (1 + h c/2) r_{n+1} = (2 - h² w2) r_n - (1 - h c/2) r_{n-1}.
+Vectors solved_step(const LinearOscillator& o, double h, const Vectors& r,
+                    const Vectors& r_previous) {
+  const double q = h * o.c / 2.0;
+  return ((2.0 - h * h * o.w2) * r - (1.0 - q) * r_previous) / (1.0 + q);
+}
+
+// The r_{-1} of (4.3) for the oscillator: r_0 - h v_0 + h²/2 a(r_0, v_0).
+Vectors taylor_backwards(const LinearOscillator& o, double h, const Vectors& r0,
+                         const Vectors& v0) {
+  return r0 - h * v0 + 0.5 * h * h * (-o.w2 * r0 - o.c * v0);
+}
+
 // One step with the history already set (so not the first step, no (4.3)): r_{n-1}, r_n and a
 // guess v for v_n that is off by a few tenths of a m/s, as a poor guess would be.
 struct StepFrom {
@@ -110,7 +124,6 @@ TEST_CASE("Verlet (4.2): the dampers see the central difference, not the backwar
   Vectors r, v;
   VerletHistory history;
   s.step(damped.function(), r, v, history);
-  const Vectors central = (r - s.r_previous) / (2.0 * s.h);
   const Vectors backward = (s.r - s.r_previous) / s.h;
   REQUIRE(damped.evaluations > 0);
   // How far the velocity of the last evaluation of a is from the backward difference.
@@ -122,6 +135,11 @@ TEST_CASE("Verlet (4.2): the dampers see the central difference, not the backwar
         "order and lowers the limit (4.5); (4.2) is the central (r_{n+1} - r_{n-1}) / "
         "(2h)");
   CHECK(from_backward > 1e-12 * largest(backward));
+  // The velocity seen is the one that moved the particles: r_{n+1} is (4.1)'s with it.
+  const Vectors moved =
+      2.0 * s.r - s.r_previous + s.h * s.h * (-damped.w2 * s.r - damped.c * damped.last_velocity);
+  INFO("compared: r_{n+1} with (4.1)'s 2 r_n - r_{n-1} + h^2 a(r_n, v_n), v_n the dampers' last");
+  CHECK(largest(r - moved) <= 1e-12 * largest(s.r));
 }
 
 TEST_CASE("Verlet: with dampers, the iteration of section 4 makes (4.1) and (4.2) agree",
@@ -135,9 +153,8 @@ TEST_CASE("Verlet: with dampers, the iteration of section 4 makes (4.1) and (4.2
   Vectors r, v;
   VerletHistory history;
   s.step(damped.function(), r, v, history);
-  // The exact solution: for a = -w2 r - c v, (4.1) with (4.2) is linear in r_{n+1}:
-  //   (1 + h c/2) r_{n+1} = (2 - h² w2) r_n - (1 - h c/2) r_{n-1}.
-  const Vectors solved = ((2.0 - h * h * damped.w2) * s.r - (1.0 - q) * s.r_previous) / (1.0 + q);
+  // The exact solution (solved_step).
+  const Vectors solved = solved_step(damped, h, s.r, s.r_previous);
   const Vectors v_solved = (solved - s.r_previous) / (2.0 * h);
   // Each pass of (4.1)-(4.2) shrinks the error of the guess for v_n by h c/2, exactly here. A
   // loop that stops at velocity_settled (1e-12 of the scale) has made it smaller than 1e-10 of
@@ -260,8 +277,14 @@ TEST_CASE("Verlet: after a step the history holds r_n, the r_{n-1} of the next s
   const AccelerationFunction model = damped.function();
   Vectors r = Vectors::Constant(2, 3, 0.5), v = Vectors::Constant(2, 3, -0.25);
   VerletHistory history;
-  const Vectors r0 = r;
+  const Vectors r0 = r, v0 = v;
   verlet_step(model, 0.01, r, v, history);
+  {
+    // The history of a step that moved: r_1 from (4.3) and (4.1)-(4.2) solved.
+    INFO("compared: r_1 with the step (4.3), (4.1), (4.2) solve from r_0 and v_0");
+    const Vectors r1 = solved_step(damped, 0.01, r0, taylor_backwards(damped, 0.01, r0, v0));
+    CHECK(largest(r - r1) <= 1e-10 * largest(r0));
+  }
   INFO((history.has_previous && history.previous_position.cols() == r0.cols() &&
                 largest(history.previous_position - r0) == 0.0
             ? std::string()
@@ -280,11 +303,16 @@ TEST_CASE("Verlet: without dampers a step needs only two evaluations",
   VerletHistory history;
   LinearOscillator undamped{16.0, 0.0};
   const AccelerationFunction plain = undamped.function();
+  const Vectors r0 = r;
   verlet_step(plain, 0.01, r, v, history);  // the first step adds one evaluation, for (4.3)
   const long first = undamped.evaluations;
+  const Vectors r1 = r;
   verlet_step(plain, 0.01, r, v, history);
   CAPTURE(undamped.evaluations - first);
   CHECK(undamped.evaluations - first <= 2);
+  // Two evaluations for a step that moved as (4.1) says: r_2 = 2 r_1 - r_0 - h² w2 r_1.
+  INFO("compared: r_2 with (4.1)'s 2 r_1 - r_0 + h^2 a(r_1)");
+  CHECK(largest(r - solved_step(undamped, 0.01, r1, r0)) <= 1e-12 * largest(r1));
 }
 
 TEST_CASE("Verlet: with dampers a step needs only a few evaluations",
@@ -296,7 +324,9 @@ TEST_CASE("Verlet: with dampers a step needs only a few evaluations",
   VerletHistory history;
   LinearOscillator undamped{16.0, 0.0};
   verlet_step(undamped.function(), 0.01, r, v, history);
+  const Vectors r1 = r;
   verlet_step(undamped.function(), 0.01, r, v, history);
+  const Vectors r2 = r;
   LinearOscillator damped{16.0, 1.0};
   verlet_step(damped.function(), 0.01, r, v, history);
   // From a guess good to about h^2 the estimates reach the 1e-12 of velocity_settled in
@@ -304,6 +334,9 @@ TEST_CASE("Verlet: with dampers a step needs only a few evaluations",
   const double passes = std::ceil(std::log(1e-12 / (0.01 * 0.01)) / std::log(0.01 * 1.0 / 2)) + 2;
   CAPTURE(damped.evaluations, passes);
   CHECK(double(damped.evaluations) <= passes);
+  // A few evaluations for a step that reached (4.1)-(4.2)'s r_3.
+  INFO("compared: r_3 with the one (4.1) and (4.2) solved together give");
+  CHECK(largest(r - solved_step(damped, 0.01, r2, r1)) <= 1e-10 * largest(r2));
 }
 
 TEST_CASE("Verlet: a step that cannot settle is reported, not turned into NaN",
@@ -316,16 +349,25 @@ TEST_CASE("Verlet: a step that cannot settle is reported, not turned into NaN",
   const AccelerationFunction model = overdamped.function();
   Vectors r = Vectors::Constant(2, 2, 1.0), v = Vectors::Constant(2, 2, 1.0);
   VerletHistory history;
-  // (The first step's guess, v_0, already solves (4.1)-(4.2) exactly, so it is the second that
-  // must iterate.)
-  bool step_failed = false;
-  std::ostringstream why;
+  // The first step's guess, v_0, already solves (4.1)-(4.2) exactly, so that step settles and
+  // moves to the r_1 they solve; it is the second that must iterate, and fail.
+  const Vectors r0 = r, v0 = v;
+  const Vectors r1 = solved_step(overdamped, 0.01, r0, taylor_backwards(overdamped, 0.01, r0, v0));
+  bool first_done = false, first_moved = false, step_failed = false;
+  std::ostringstream why, why_first;
   try {
     verlet_step(model, 0.01, r, v, history);
+    first_done = true;
+    first_moved = largest(r - r1) <= 1e-10 * largest(r0);
+    if (!first_moved)
+      why_first << "the first step, which settles at once (v_0 solves (4.1)-(4.2)), did not move r "
+                << "to the r_1 of (4.3), (4.1) and (4.2)";
     verlet_step(model, 0.01, r, v, history);
     why << "no StepFailed: h c / 2 = 5, the passes cannot settle, yet the step returned";
   } catch (const StepFailed&) {
     step_failed = true;
+    if (!first_done)
+      why_first << "StepFailed already in the first step, whose guess settles at once";
   } catch (const LinearOscillator::NeverStops&) {
     why << "the iteration has no cap: " << overdamped.evaluations << " evaluations in one step "
         << "and still going; stop after verlet_max_iterations = " << verlet_max_iterations
@@ -334,6 +376,8 @@ TEST_CASE("Verlet: a step that cannot settle is reported, not turned into NaN",
   CAPTURE(overdamped.evaluations);
   if (!step_failed) UNSCOPED_INFO(why.str());
   CHECK(step_failed);
+  if (!first_moved) UNSCOPED_INFO(why_first.str());
+  CHECK(first_moved);
 }
 
 TEST_CASE("Verlet converges with order 2 to the exact two-mass solution",
@@ -371,9 +415,17 @@ TEST_CASE("Verlet: momentum is conserved over thousands of steps", "[task4][verl
   Simulation sim(std::move(scene), implementation());
   const Vec2 start = sim.diagnostics().momentum;
   REQUIRE(start.norm() > 0.1);
+  const auto centre = [](const Particles& p) -> Vec2 { return p.position * p.mass / p.mass.sum(); };
+  const Vec2 centre_start = centre(sim.particles());
   const double worst = momentum_drift(sim, 6000);
   CAPTURE(start, worst);
   CHECK(worst <= 1e-11);
+  // P held by a system that moves: its centre of mass went on at P / M all along (sum m_i times
+  // (4.1) is C_{n+1} - 2 C_n + C_{n-1} = 0, and (4.3) starts it at v_0).
+  const Vec2 travelled = sim.time() * start / sim.particles().mass.sum();
+  CAPTURE(travelled);
+  CHECK_THAT(Vec2(centre(sim.particles()) - centre_start),
+             IsNear(travelled, 1e-9 * travelled.norm()));
 }
 
 TEST_CASE("Verlet: a mirror-symmetric start moves mirror-symmetrically", "[task4][symmetry]") {
@@ -385,18 +437,21 @@ TEST_CASE("Verlet: a mirror-symmetric start moves mirror-symmetrically", "[task4
   r.col(at(0, 1, n)) += Vec2(0.0, 0.3);  // the top middle pulled up
   r.col(at(2, 0, n)) += Vec2(-0.1, -0.1);
   r.col(at(2, 2, n)) += Vec2(0.1, -0.1);
+  const double pulled = r(1, at(0, 1, n));
   Simulation sim(std::move(scene), implementation());
-  double worst = 0.0;
+  double worst = 0.0, lowest = pulled;
   run(sim, 3000, [&](const Simulation& s) {
     const Vectors& p = s.particles().position;
+    lowest = std::min(lowest, p(1, at(0, 1, n)));
     for (int row = 0; row < n; ++row)
       for (int col = 0; col < n; ++col) {
         const Vec2 a = p.col(at(row, col, n)), b = p.col(at(row, n - 1 - col, n));
         worst = std::max({worst, std::abs(a.x() + b.x() - 2.0), std::abs(a.y() - b.y())});
       }
   });
-  CAPTURE(worst);
+  CAPTURE(worst, pulled, lowest);
   CHECK(worst <= 1e-10);
+  CHECK(lowest < pulled);  // the springs pulled the top middle back down: it moved
 }
 
 TEST_CASE("Verlet is stable at the lab step on the 3x3 grid for 60 s",
