@@ -1,7 +1,8 @@
 // WindField::velocities (wind.hpp): w(t, r) for a row of particles at a time, its sines four at
 // a time. Apart from wind.cpp so that only this loop uses libmvec's sines: velocity() and
-// compute() there keep std::sin's own results, and code linked with the task support library
-// alone (a student's) never needs libmvec. Part of the core library, compiled at -O3.
+// compute() there keep std::sin's own results, and code that never calls velocities() never needs
+// libmvec. Part of the task support library, which a submission links (a task 5 may call it: it
+// is in the public header), compiled at -O3.
 #include "springlab/wind.hpp"
 
 #include "springlab/avx2.hpp"
