@@ -98,8 +98,9 @@ bool forbid_what_tests_never_need(void (*on_forbidden)(long number)) {
   sigaction(SIGSYS, &action, nullptr);
 
   // Two filters: the kernel applies the stricter answer of the two. The first lets everything
-  // through but turns an open for writing into EACCES; the second allows only the list above
-  // (opening files of any kind included) and traps the rest.
+  // through but turns an open for writing into EACCES and traps the descriptor settings that
+  // make the kernel signal someone; the second allows only the list above (opening files of any
+  // kind included) and traps the rest.
   const Filter writes(seccomp_init(SCMP_ACT_ALLOW), seccomp_release);
   const uint32_t refuse = SCMP_ACT_ERRNO(EACCES);
   bool ok = bool(writes);
@@ -117,6 +118,17 @@ bool forbid_what_tests_never_need(void (*on_forbidden)(long number)) {
                SCMP_CMP(flags_arg, SCMP_CMP_MASKED_EQ, scmp_datum_t(flag), scmp_datum_t(flag)));
     }
   ok = ok && add(writes, refuse, "creat") && add(writes, refuse, "openat2");
+  // A descriptor's owner gets a signal from the kernel when I/O is possible on it (SIGIO, or the
+  // one F_SETSIG chooses): owned by another process, such as the harness, or by a process group,
+  // any pipe the worker makes would signal it. So fcntl may neither name an owner nor switch on
+  // O_ASYNC (fcntl64 is the same call on 32-bit systems).
+  for (const char* call : {"fcntl", "fcntl64"}) {
+    for (const int command : {F_SETOWN, F_SETOWN_EX, F_SETSIG})
+      ok = ok && add(writes, SCMP_ACT_TRAP, call, 1, SCMP_A1(SCMP_CMP_EQ, scmp_datum_t(command)));
+    const auto async = scmp_datum_t(O_ASYNC);
+    ok = ok && add(writes, SCMP_ACT_TRAP, call, 2, SCMP_A1(SCMP_CMP_EQ, scmp_datum_t(F_SETFL)),
+                   SCMP_A2(SCMP_CMP_MASKED_EQ, async, async));
+  }
 
   const Filter calls(seccomp_init(SCMP_ACT_TRAP), seccomp_release);
   ok = ok && bool(calls);
