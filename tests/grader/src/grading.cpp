@@ -741,9 +741,8 @@ class Grader::Pipeline {
   // ran, so nothing of the test is known.
   std::string fault_of_test(const Outcome& o) const {
     if (!o.start_error.empty()) return "the grader could not start a test: " + o.start_error;
-    if (o.output.rfind("bwrap: ", 0) == 0 && o.records.empty() && o.stopped == Stop::none)
-      return "the grader could not make a test's sandbox: " +
-             o.output.substr(7, o.output.find('\n') - 7);
+    if (g_.isolation_.never_made(o))
+      return "the grader could not make a test's sandbox: " + Isolation::why_never_made(o);
     return "";
   }
 
@@ -783,9 +782,9 @@ class Grader::Pipeline {
   // failure is the code's.
   std::string fault_of(const Outcome& o, const std::string& what) const {
     if (!o.start_error.empty()) return "the grader could not run " + what + ": " + o.start_error;
-    if (o.output.rfind("bwrap: ", 0) == 0 && o.records.empty() && o.stopped == Stop::none)
+    if (g_.isolation_.never_made(o))
       return "the grader could not make the sandbox for " + what + ": " +
-             o.output.substr(7, o.output.find('\n') - 7);
+             Isolation::why_never_made(o);
     return work_full();
   }
 

@@ -70,6 +70,7 @@ Isolation Isolation::probe(std::vector<fs::path> hide) {
   ProcessPool pool(1);
   Command c;
   c.argv = i.wrap({"/usr/bin/true"}, plain_environment(), View{});
+  c.status_channel = true;
   c.env = plain_environment();
   c.directory = "/";
   c.limits.wall_seconds = c.limits.cpu_seconds = 30;
@@ -103,7 +104,8 @@ std::vector<std::string> Isolation::wrap(const std::vector<std::string>& argv,
   else
     w.insert(w.end(), {"--unshare-user", "--unshare-ipc", "--unshare-pid", "--unshare-net",
                        "--unshare-uts", "--unshare-cgroup-try", "--disable-userns"});
-  w.insert(w.end(), {"--die-with-parent", "--clearenv"});
+  // Its own report on fd 5 (Command::status_channel), which it closes before the command starts.
+  w.insert(w.end(), {"--die-with-parent", "--json-status-fd", "5", "--clearenv"});
   for (const std::string& e : env) {
     const auto eq = e.find('=');
     w.insert(w.end(),
@@ -140,11 +142,30 @@ std::vector<std::string> Isolation::wrap(const std::vector<std::string>& argv,
 
 void Isolation::confine(Command& c, const View& view) const {
   c.argv = wrap(c.argv, c.env, view);
+  c.status_channel = namespaces_;
   if (namespaces_) return;
   c.run_as = run_as_;
   if (!view.directory.empty())
     for (const Binding& b : view.bindings)
       if (view.directory == (b.inside.empty() ? b.path : b.inside)) c.directory = b.path.string();
+}
+
+bool Isolation::never_made(const Outcome& o) const {
+  if (!namespaces_ || o.stopped != Stop::none) return false;  // no sandbox, or the grader ended it
+  const bool failed = !o.exited || o.exit_code != 0;
+  return failed && o.status.find("\"exit-code\"") == std::string::npos;
+}
+
+std::string Isolation::why_never_made(const Outcome& o) {
+  // The command never ran, so everything printed is bubblewrap's.
+  std::string why;
+  std::istringstream lines(o.output);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("bwrap: ", 0) == 0) why = line.substr(7);
+  if (why.empty())
+    why = o.exited ? "bubblewrap ended with status " + std::to_string(o.exit_code)
+                   : "bubblewrap ended by signal " + std::to_string(o.signal);
+  return why;
 }
 
 std::string Isolation::describe() const {

@@ -55,6 +55,14 @@ class Isolation {
   /// Confines `c` to `view`: its command line wrapped (its argv written with the paths the
   /// command sees), or, where there are no namespaces, run as run_as() with the host's paths.
   void confine(Command& c, const View& view) const;
+  /// Whether the sandbox of a confined command that ended as `o` was never made, so that the
+  /// command itself never ran (the grader's fault, not the code's). Decided from bubblewrap's
+  /// status channel alone (Command::status_channel): once the command inside has ended, bubblewrap
+  /// writes its exit code there, and it writes none when it failed before (making the namespaces,
+  /// the mounts, starting the command). Never from the output, which the command writes.
+  bool never_made(const Outcome& o) const;
+  /// bubblewrap's own words for a sandbox never_made (its last line starting "bwrap: ").
+  static std::string why_never_made(const Outcome& o);
   /// One paragraph for the run's output and review.csv: how submission code is confined here.
   std::string describe() const;
   /// Makes `folder` writable by the user commands run as (it must be the grader's own).

@@ -28,6 +28,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// What the sandbox's status channel may bring: a few JSON lines (bubblewrap's child pid, then its
+// exit code).
+constexpr std::size_t status_limit = 64 * 1024;
+
 volatile std::sig_atomic_t interrupted_by = 0;  // the signal that asked the grader to stop
 
 // A file descriptor that closes itself.
@@ -69,20 +73,26 @@ void set_limit(int resource, rlim_t soft, rlim_t hard) {
 
 // In the child, between fork and exec: only async-signal-safe calls.
 [[noreturn]] void become(const Command& c, pid_t parent, int out, int records, int secret,
-                         int exec_error, char* const* argv, char* const* env) {
+                         int status, int exec_error, char* const* argv, char* const* env) {
   ::setsid();  // its own process group, to be killed whole, and no controlling terminal
-  // Move the ends out of the way of 0-4 first: a pipe may have been given one of those numbers.
+  // Move the ends out of the way of 0-5 first: a pipe may have been given one of those numbers.
   const int moved_out = ::fcntl(out, F_DUPFD_CLOEXEC, 10);
   const int moved_records = records >= 0 ? ::fcntl(records, F_DUPFD_CLOEXEC, 10) : -1;
   const int moved_secret = secret >= 0 ? ::fcntl(secret, F_DUPFD_CLOEXEC, 10) : -1;
+  const int moved_status = status >= 0 ? ::fcntl(status, F_DUPFD_CLOEXEC, 10) : -1;
   const int null = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
   ::dup2(null, 0);
   ::dup2(moved_out, 1);
   ::dup2(moved_out, 2);
-  if (moved_records >= 0) ::dup2(moved_records, 3);
-  if (moved_secret >= 0) ::dup2(moved_secret, 4);
-  // Nothing else the grader inherited (a terminal's, a CI runner's descriptors) reaches the child.
-  ::close_range(moved_secret >= 0 ? 5 : moved_records >= 0 ? 4 : 3, ~0U, CLOSE_RANGE_CLOEXEC);
+  // Nothing else the grader inherited (a terminal's, a CI runner's descriptors) reaches the child:
+  // 3 to 5 unless given here, and everything above.
+  const int given[] = {moved_records, moved_secret, moved_status};
+  for (int fd = 3; fd <= 5; ++fd)
+    if (given[fd - 3] >= 0)
+      ::dup2(given[fd - 3], fd);
+    else
+      ::fcntl(fd, F_SETFD, FD_CLOEXEC);
+  ::close_range(6, ~0U, CLOSE_RANGE_CLOEXEC);
   struct sigaction standard = {};
   standard.sa_handler = SIG_DFL;
   ::sigaction(SIGPIPE, &standard, nullptr);
@@ -121,7 +131,7 @@ struct Job {
 struct Running {
   Job job;
   pid_t pid = -1;
-  Fd pidfd, out, records;
+  Fd pidfd, out, records, status;
   Clock::time_point start, deadline, next_memory_check;
   Outcome outcome;
 };
@@ -170,11 +180,12 @@ void ProcessPool::Impl::start(Job job) {
   Running r;
   r.job = std::move(job);
   const Command& c = r.job.command;
-  Pipe out = make_pipe(), exec_error = make_pipe(), records, secret;
+  Pipe out = make_pipe(), exec_error = make_pipe(), records, secret, status;
   if (!c.secret.empty()) {
     records = make_pipe();
     secret = make_pipe();
   }
+  if (c.status_channel) status = make_pipe();
   std::vector<std::string> argv = c.argv, env = c.env;
   std::vector<char*> argv_p = pointers(argv), env_p = pointers(env);
 
@@ -187,10 +198,11 @@ void ProcessPool::Impl::start(Job job) {
     return;
   }
   if (pid == 0)
-    become(c, self, out.write.get(), records.write.get(), secret.read.get(), exec_error.write.get(),
-           argv_p.data(), env_p.data());
+    become(c, self, out.write.get(), records.write.get(), secret.read.get(), status.write.get(),
+           exec_error.write.get(), argv_p.data(), env_p.data());
   r.pid = pid;
   exec_error.write.reset(), out.write.reset(), records.write.reset(), secret.read.reset();
+  status.write.reset();
   int error = 0;
   if (::read(exec_error.read.get(), &error, sizeof error) == sizeof error) {
     ::waitpid(pid, nullptr, 0);
@@ -207,7 +219,8 @@ void ProcessPool::Impl::start(Job job) {
   r.pidfd = Fd(int(::syscall(SYS_pidfd_open, pid, 0)));  // readable once the child has ended
   r.out = std::move(out.read);
   r.records = std::move(records.read);
-  for (const Fd* fd : {&r.out, &r.records})
+  r.status = std::move(status.read);
+  for (const Fd* fd : {&r.out, &r.records, &r.status})
     if (fd->get() >= 0) ::fcntl(fd->get(), F_SETFL, O_NONBLOCK);
   r.deadline = r.start + std::chrono::duration_cast<Clock::duration>(
                              std::chrono::duration<double>(c.limits.wall_seconds));
@@ -223,7 +236,7 @@ void ProcessPool::Impl::stop(Running& r, Stop why) {
 void ProcessPool::Impl::read_from(Running& r, bool drain) {
   char buffer[65536];
   const Limits& limits = r.job.command.limits;
-  for (Fd* fd : {&r.out, &r.records}) {
+  for (Fd* fd : {&r.out, &r.records, &r.status}) {
     while (fd->get() >= 0) {
       const ssize_t n = ::read(fd->get(), buffer, sizeof buffer);
       if (n < 0 && errno == EINTR) continue;
@@ -239,9 +252,11 @@ void ProcessPool::Impl::read_from(Running& r, bool drain) {
         r.outcome.output.append(buffer, std::min(room, size));
         r.outcome.output_bytes += size;
         if (r.outcome.output_bytes > limits.output_limit) stop(r, Stop::output);
-      } else if (r.outcome.records.size() < limits.records_limit) {
+      } else if (fd == &r.records && r.outcome.records.size() < limits.records_limit) {
         r.outcome.records.append(buffer,
                                  std::min(limits.records_limit - r.outcome.records.size(), size));
+      } else if (fd == &r.status && r.outcome.status.size() < status_limit) {
+        r.outcome.status.append(buffer, std::min(status_limit - r.outcome.status.size(), size));
       }
       if (!drain) break;  // one buffer per turn, so that a flood cannot starve the others
     }
@@ -282,7 +297,7 @@ void ProcessPool::Impl::step() {
   auto now = Clock::now();
   auto wake = now + std::chrono::milliseconds(200);
   for (Running& r : running) {
-    for (const Fd* fd : {&r.out, &r.records, &r.pidfd})
+    for (const Fd* fd : {&r.out, &r.records, &r.status, &r.pidfd})
       if (fd->get() >= 0) fds.push_back({fd->get(), POLLIN, 0});
     if (r.pidfd.get() < 0) wake = std::min(wake, now + std::chrono::milliseconds(10));
     wake = std::min(wake, r.deadline);

@@ -31,6 +31,10 @@ struct Command {
   std::vector<std::string> env;   ///< the whole environment, "NAME=value"
   std::string directory;          ///< working directory
   std::string secret;             ///< when set: sent on fd 4; records are read from fd 3
+  /// When set: a pipe on fd 5 for the sandbox's own report (bubblewrap's --json-status-fd), read
+  /// into Outcome::status. The sandbox closes it before it starts the command inside, so nothing
+  /// the command runs can write there.
+  bool status_channel = false;
   Limits limits;
   uid_t run_as = uid_t(-1);  ///< when set (the grader is root): the user (and group) it runs as
 };
@@ -49,6 +53,7 @@ struct Outcome {
   std::string output;            ///< the first output_kept bytes of stdout and stderr, interleaved
   std::size_t output_bytes = 0;  ///< everything printed, bytes
   std::string records;           ///< what arrived on fd 3 (at most records_limit bytes)
+  std::string status;            ///< what arrived on fd 5 (Command::status_channel; 64 kB at most)
   std::string start_error;       ///< set when the program could not be started at all
 };
 

@@ -166,3 +166,30 @@ TEST_CASE("Without namespaces, commands keep the host's paths and run as nobody 
   CHECK(c.run_as == (geteuid() == 0 ? uid_t(65534) : uid_t(-1)));
   CHECK_THAT(none.describe(), lab_catch::Contains("refused by this host"));
 }
+
+TEST_CASE("Whether a sandbox was made is bubblewrap's word, never the command's output",
+          "[isolation]") {
+  if (!isolation().namespaces()) {
+    WARN("no namespaces on this machine: " << isolation().why_not());
+    return;
+  }
+  Scratch s;
+  View view;
+  view.bindings = {{s.top / "visible", {}, false}};
+  // A command that ran and failed, printing what bubblewrap prints when it cannot make one: its
+  // own failure, whatever it says (a compiler's messages or a test's output are the code's).
+  const Outcome forged = run_inside(
+      "echo 'bwrap: Creating new namespace failed: Operation not permitted' >&2; exit 1", view);
+  INFO(forged.output << forged.status);
+  CHECK_THAT(forged.output, lab_catch::StartsWith("bwrap: "));
+  CHECK_FALSE(isolation().never_made(forged));
+  // A sandbox that cannot be made (a folder to show that is gone): the grader's fault, in
+  // bubblewrap's words.
+  view.bindings.push_back({s.top / "gone", {}, false});
+  const Outcome gone = run_inside("exit 0", view);
+  INFO(gone.output << gone.status);
+  CHECK(isolation().never_made(gone));
+  CHECK_THAT(Isolation::why_never_made(gone), lab_catch::Contains("gone"));
+  // And a command that ran and succeeded is never the grader's fault.
+  CHECK_FALSE(isolation().never_made(run_inside("true", {})));
+}
