@@ -623,6 +623,7 @@ class Grader::Pipeline {
         {(sanitized ? kit_.sanitized_programs : kit_.programs).at(test.task), worker, false},
         {b.library(v), library, false}};
     view.scratch_mb = 16;
+    view.test = true;  // the worker filters itself, and the harness signals it
     g_.isolation_.confine(c, view);
     return c;
   }

@@ -4,7 +4,9 @@
 // for its output folder) and a size-limited scratch exist; no network, no other process, no
 // environment but the one given, an unprivileged user, and the whole sandbox dies with the
 // grader. Where the kernel or a container refuses namespaces, the grader says so once and runs
-// the same commands as an unprivileged user instead (see tests/grader/README.md).
+// the same commands as an unprivileged user instead, one per command running at once where it
+// can, the builds under a system-call filter that keeps them from reaching any other process
+// (see tests/grader/README.md).
 #pragma once
 
 #include "process.hpp"
@@ -12,6 +14,7 @@
 #include <sys/types.h>
 
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -31,6 +34,9 @@ struct View {
   std::vector<Binding> bindings;
   long scratch_mb = 64;  ///< the size of its writable /tmp, MB
   fs::path directory;    ///< its working folder, as the command sees it
+  /// A test's harness and worker, not a build: the worker loads a stricter filter of its own
+  /// (harness/sandbox.cpp) before any submission code runs, and the harness must signal it.
+  bool test = false;
 };
 
 class Isolation {
@@ -48,12 +54,19 @@ class Isolation {
   /// The user id commands run as outside the sandbox: 65534 (nobody) when the grader is root,
   /// -1 for the grader's own user.
   uid_t run_as() const { return run_as_; }
+  /// Where there are no namespaces and the grader is root: whether each command running at once
+  /// has a user of its own (users_from() and up, ProcessPool::users_apart of them), so that none
+  /// can signal, trace or read the processes of another; why not, when not.
+  bool users_apart() const { return users_apart_; }
+  const std::string& why_not_apart() const { return why_not_apart_; }
+  static constexpr uid_t users_from = 65000;  // Debian's reserved 65000-65533: no one's
   /// The command line that runs `argv` (with environment `env`) confined to `view`; where there
   /// are no namespaces, `argv` itself, and the caller runs it as run_as() in view.directory.
   std::vector<std::string> wrap(const std::vector<std::string>& argv,
                                 const std::vector<std::string>& env, const View& view) const;
   /// Confines `c` to `view`: its command line wrapped (its argv written with the paths the
-  /// command sees), or, where there are no namespaces, run as run_as() with the host's paths.
+  /// command sees), or, where there are no namespaces, run as run_as() (or a user apart) with
+  /// the host's paths, and, unless it is a test, under build_filter().
   void confine(Command& c, const View& view) const;
   /// Whether the sandbox of a confined command that ended as `o` was never made, so that the
   /// command itself never ran (the grader's fault, not the code's). Decided from bubblewrap's
@@ -71,10 +84,19 @@ class Isolation {
   /// For tests: never use namespaces, as on a host that refuses them.
   static Isolation without_namespaces(const std::string& why);
 
+  /// The system-call filter of a build (preprocessor, compiler, nm, linker) where there are no
+  /// namespaces: anything a compiler does, but nothing that reaches another process (signals
+  /// beyond its own process group, which it may not leave; tracing; another's memory, limits or
+  /// scheduling) or the network. Refused calls fail with EPERM.
+  static std::shared_ptr<const SystemCallFilter> build_filter();
+
  private:
   bool namespaces_ = false;
   std::string why_not_;
   uid_t run_as_ = uid_t(-1);
+  bool users_apart_ = false;
+  std::string why_not_apart_;
+  std::shared_ptr<const SystemCallFilter> filter_;
   std::string bwrap_, setpriv_;
   std::vector<std::string> system_;  // bwrap's options for the system's folders
   std::vector<fs::path> hide_;

@@ -3,10 +3,12 @@
 #include <fcntl.h>
 #include <grp.h>
 #include <linux/close_range.h>
+#include <linux/seccomp.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
 #include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -71,9 +73,25 @@ void set_limit(int resource, rlim_t soft, rlim_t hard) {
   ::setrlimit(resource, &limit);
 }
 
-// In the child, between fork and exec: only async-signal-safe calls.
-[[noreturn]] void become(const Command& c, pid_t parent, int out, int records, int secret,
-                         int status, int exec_error, char* const* argv, char* const* env) {
+// In the child: the filter's placeholders for its own group given its pid (which is its group's),
+// then loaded. Its own copy of the program, so the parent's stays as it was.
+bool load_filter(std::vector<sock_filter>& program) {
+  const auto self = std::uint32_t(::getpid());
+  const std::uint32_t group = SystemCallFilter::own_group;
+  for (sock_filter& step : program) {
+    if (BPF_CLASS(step.code) != BPF_JMP || BPF_SRC(step.code) != BPF_K) continue;
+    if (step.k == group) step.k = self;
+  }
+  const sock_fprog loaded = {static_cast<unsigned short>(program.size()), program.data()};
+  return ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0) == 0 &&
+         ::syscall(SYS_seccomp, SECCOMP_SET_MODE_FILTER, 0, &loaded) == 0;
+}
+
+// In the child, between fork and exec: only async-signal-safe calls (a filter's program was
+// copied before the fork, and is only written here).
+[[noreturn]] void become(const Command& c, int slot, std::vector<sock_filter>* filter, pid_t parent,
+                         int out, int records, int secret, int status, int exec_error,
+                         char* const* argv, char* const* env) {
   ::setsid();  // its own process group, to be killed whole, and no controlling terminal
   // Move the ends out of the way of 0-5 first: a pipe may have been given one of those numbers.
   const int moved_out = ::fcntl(out, F_DUPFD_CLOEXEC, 10);
@@ -109,15 +127,20 @@ void set_limit(int resource, rlim_t soft, rlim_t hard) {
   set_limit(RLIMIT_CORE, 0, 0);
   set_limit(RLIMIT_NOFILE, 256, 256);
   if (c.run_as != uid_t(-1)) {  // the grader is root: the child is not
-    const gid_t group = gid_t(c.run_as);
+    const uid_t user = c.user_per_slot ? c.run_as + uid_t(slot) : c.run_as;
+    const gid_t group = c.group != gid_t(-1) ? c.group : gid_t(c.run_as);
     if (::setgroups(0, nullptr) != 0 || ::setresgid(group, group, group) != 0 ||
-        ::setresuid(c.run_as, c.run_as, c.run_as) != 0 || ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0))
+        ::setresuid(user, user, user) != 0 || ::prctl(PR_SET_NO_NEW_PRIVS, 1, 0, 0, 0))
       ::_exit(127);
+    // Users apart share their files through their group: a task's link reads and replaces what
+    // its compilations, run as other users, wrote.
+    if (c.user_per_slot) ::umask(002);
   }
   // Killed with the grader, however it ends (set after the change of user, which clears it).
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
   if (::getppid() != parent) ::_exit(127);
-  if (::chdir(c.directory.c_str()) == 0) ::execve(argv[0], argv, env);
+  if ((filter == nullptr || load_filter(*filter)) && ::chdir(c.directory.c_str()) == 0)
+    ::execve(argv[0], argv, env);
   const int error = errno;
   [[maybe_unused]] const ssize_t ignored = ::write(exec_error, &error, sizeof error);
   ::_exit(127);
@@ -130,6 +153,7 @@ struct Job {
 
 struct Running {
   Job job;
+  int slot = 0;  // which of the pool's `parallel` places it has
   pid_t pid = -1;
   Fd pidfd, out, records, status;
   Clock::time_point start, deadline, next_memory_check;
@@ -169,6 +193,7 @@ struct ProcessPool::Impl {
   std::deque<Job> queued;
   std::list<Running> running;
 
+  int free_slot() const;
   void start(Job job);
   void read_from(Running& r, bool drain);
   void stop(Running& r, Stop why);
@@ -176,9 +201,17 @@ struct ProcessPool::Impl {
   void step();
 };
 
+int ProcessPool::Impl::free_slot() const {
+  for (int slot = 0;; ++slot)
+    if (std::none_of(running.begin(), running.end(),
+                     [slot](const Running& r) { return r.slot == slot; }))
+      return slot;
+}
+
 void ProcessPool::Impl::start(Job job) {
   Running r;
   r.job = std::move(job);
+  r.slot = free_slot();
   const Command& c = r.job.command;
   Pipe out = make_pipe(), exec_error = make_pipe(), records, secret, status;
   if (!c.secret.empty()) {
@@ -188,6 +221,8 @@ void ProcessPool::Impl::start(Job job) {
   if (c.status_channel) status = make_pipe();
   std::vector<std::string> argv = c.argv, env = c.env;
   std::vector<char*> argv_p = pointers(argv), env_p = pointers(env);
+  std::vector<sock_filter> filter;
+  if (c.filter) filter = c.filter->program;
 
   r.start = Clock::now();
   const pid_t self = ::getpid();
@@ -198,8 +233,9 @@ void ProcessPool::Impl::start(Job job) {
     return;
   }
   if (pid == 0)
-    become(c, self, out.write.get(), records.write.get(), secret.read.get(), status.write.get(),
-           exec_error.write.get(), argv_p.data(), env_p.data());
+    become(c, r.slot % users_apart, c.filter ? &filter : nullptr, self, out.write.get(),
+           records.write.get(), secret.read.get(), status.write.get(), exec_error.write.get(),
+           argv_p.data(), env_p.data());
   r.pid = pid;
   exec_error.write.reset(), out.write.reset(), records.write.reset(), secret.read.reset();
   status.write.reset();

@@ -4,9 +4,11 @@
 // stops the whole process group when a limit is hit.
 #pragma once
 
+#include <linux/filter.h>
 #include <sys/types.h>
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -26,6 +28,15 @@ struct Limits {
   std::size_t records_limit = 1u << 20;  ///< bytes accepted on the record channel (fd 3)
 };
 
+/// A system-call filter (seccomp's classic BPF program) that a child loads just before it starts
+/// its program, and that everything the program starts inherits. Its rules may compare a pid
+/// with `own_group`, which the child replaces with its own pid, known only once it is forked: as
+/// the leader of a process group of its own (setsid), that is its group's id too.
+struct SystemCallFilter {
+  static constexpr std::uint32_t own_group = 0x5eed0001;  // above any pid (at most 2^22)
+  std::vector<sock_filter> program;
+};
+
 struct Command {
   std::vector<std::string> argv;  ///< argv[0] is the program's path
   std::vector<std::string> env;   ///< the whole environment, "NAME=value"
@@ -36,7 +47,12 @@ struct Command {
   /// the command runs can write there.
   bool status_channel = false;
   Limits limits;
-  uid_t run_as = uid_t(-1);  ///< when set (the grader is root): the user (and group) it runs as
+  uid_t run_as = uid_t(-1);  ///< when set (the grader is root): the user it runs as
+  gid_t group = gid_t(-1);   ///< ...and its group; unset: the group with run_as's number
+  /// With run_as: the first of a range of users, one per process slot of the pool, so that no
+  /// two commands running at once share a user (ProcessPool::users_apart).
+  bool user_per_slot = false;
+  std::shared_ptr<const SystemCallFilter> filter;  ///< when set: loaded before the program starts
 };
 
 /// Why the grader stopped a child, if it did.
@@ -81,6 +97,10 @@ class ProcessPool {
   ProcessPool& operator=(const ProcessPool&) = delete;
 
   void add(Command command, std::function<void(Outcome)> done);
+
+  /// How many users apart a command with user_per_slot may take: its run_as plus a slot number
+  /// below this (at most `parallel` are in use at once).
+  static constexpr int users_apart = 534;
 
   /// Returns once every command added, including those added by callbacks, has ended. Throws
   /// Interrupted after interrupt(), its commands killed.

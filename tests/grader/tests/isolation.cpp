@@ -163,8 +163,91 @@ TEST_CASE("Without namespaces, commands keep the host's paths and run as nobody 
   Command c;
   c.argv = {"/grade/worker"};
   none.confine(c, view);
-  CHECK(c.run_as == (geteuid() == 0 ? uid_t(65534) : uid_t(-1)));
+  if (geteuid() != 0)
+    CHECK(c.run_as == uid_t(-1));
+  else if (none.users_apart())
+    CHECK((c.run_as == Isolation::users_from && c.user_per_slot && c.group == 65534));
+  else
+    CHECK(c.run_as == uid_t(65534));
+  CHECK(c.filter);  // a build's
   CHECK_THAT(none.describe(), lab_catch::Contains("refused by this host"));
+  Command test;
+  view.test = true;
+  none.confine(test, view);
+  CHECK_FALSE(test.filter);  // the worker loads its own, and the harness must signal it
+}
+
+namespace {
+
+// Runs the shell script `script` under `filter` (as this process's own user), in a folder of its
+// own where it may write.
+Outcome run_filtered(const std::string& script, std::shared_ptr<const SystemCallFilter> filter) {
+  Command c;
+  c.argv = {"/bin/bash", "-c", script};
+  c.env = plain_environment();
+  c.directory = fs::temp_directory_path().string();
+  c.filter = std::move(filter);
+  c.limits.file_size_mb = 32;
+  ProcessPool pool(1);
+  Outcome result;
+  pool.add(std::move(c), [&](Outcome o) { result = std::move(o); });
+  pool.run();
+  return result;
+}
+
+}  // namespace
+
+TEST_CASE("Without namespaces, a build signals nothing but its own process group", "[isolation]") {
+  // Signal 0 asks the kernel whether a signal would be delivered, and delivers none: what the
+  // filter refuses fails with EPERM, whoever runs the test. The grader here is this process.
+  const std::string grader = std::to_string(getpid());
+  const Outcome o = run_filtered(
+      "kill -0 " + grader + " && echo REACHED-GRADER; kill -0 -1 && echo REACHED-ALL; " +
+          "kill -0 0 && echo OWN-GROUP; (kill -0 $BASHPID) && echo REACHED-ITSELF; " +
+          "setsid -w true && echo LEFT-GROUP; : </dev/tcp/127.0.0.1/9 && echo NETWORK; " +
+          "printf 'int main() { return 0; }' | c++ -x c++ - -o /tmp/springlab-filtered-" + grader +
+          " && echo COMPILED; rm -f /tmp/springlab-filtered-" + grader,
+      Isolation::build_filter());
+  INFO(o.output);
+  CHECK(o.exited);
+  CHECK(o.output.find("REACHED") == std::string::npos);
+  CHECK(o.output.find("OWN-GROUP") != std::string::npos);
+  CHECK(o.output.find("LEFT-GROUP") == std::string::npos);
+  CHECK(o.output.find("NETWORK") == std::string::npos);
+  CHECK(o.output.find("COMPILED") != std::string::npos);
+}
+
+TEST_CASE("Without namespaces and as root, commands running at once are users apart",
+          "[isolation]") {
+  const Isolation none = Isolation::without_namespaces("refused by this host");
+  if (geteuid() != 0 || !none.users_apart()) {
+    WARN("no users apart here: " << (geteuid() != 0 ? "not root" : none.why_not_apart()));
+    return;
+  }
+  // The first sleeps; the second, started beside it, tries to signal it (with no filter: the
+  // users alone must keep them apart).
+  const std::string marker = "springlab-apart-" + std::to_string(getpid());
+  const std::string scripts[] = {
+      "id -u; sleep 3 # " + marker,
+      "id -u; sleep 0.5; for p in $(pgrep -f '^/bin/sh -c id -u; sleep 3 # " + marker +
+          "'); do echo SEEN; kill -0 $p && echo REACHED; done"};
+  ProcessPool pool(2);
+  std::vector<Outcome> outcomes(2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    Command c;
+    c.argv = {"/bin/sh", "-c", scripts[i]};
+    c.env = plain_environment();
+    c.directory = "/";
+    none.confine(c, View{});
+    c.filter.reset();
+    pool.add(std::move(c), [&outcomes, i](Outcome o) { outcomes[i] = std::move(o); });
+  }
+  pool.run();
+  INFO(outcomes[0].output << "---\n" << outcomes[1].output);
+  CHECK(outcomes[0].output.substr(0, outcomes[0].output.find('\n')) !=
+        outcomes[1].output.substr(0, outcomes[1].output.find('\n')));
+  CHECK(outcomes[1].output.find("SEEN") != std::string::npos);
+  CHECK(outcomes[1].output.find("REACHED") == std::string::npos);
 }
 
 TEST_CASE("Whether a sandbox was made is bubblewrap's word, never the command's output",
