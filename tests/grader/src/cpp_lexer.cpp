@@ -15,10 +15,17 @@ bool is_identifier_char(unsigned char c) {
   return is_identifier_start(c) || std::isdigit(c);
 }
 
+// A blank within a line as GCC reads one (a carriage return only ever ends a line here: the
+// source policy refuses one that does not).
+bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
+}
+
 }  // namespace
 
 // Translation phases 1-2: a backslash at the end of a line joins it to the next (GCC allows
-// spaces between the two); each character keeps its physical line, for messages.
+// blanks between the two, form feed and vertical tab included); each character keeps its
+// physical line, for messages.
 Lexer::Lexer(const std::string& source) {
   text_.reserve(source.size());
   line_.reserve(source.size());
@@ -26,7 +33,7 @@ Lexer::Lexer(const std::string& source) {
   for (std::size_t i = 0; i < source.size(); ++i) {
     if (source[i] == '\\') {
       std::size_t k = i + 1;
-      while (k < source.size() && (source[k] == ' ' || source[k] == '\t' || source[k] == '\r'))
+      while (k < source.size() && is_blank(source[k]))
         ++k;
       if (k < source.size() && source[k] == '\n') {
         i = k;
@@ -47,7 +54,7 @@ bool Lexer::next(Token& t) {
     if (c == '\n') {
       line_start_ = true;
       ++i_;
-    } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
+    } else if (is_blank(c)) {
       ++i_;
     } else if (s.compare(i_, 2, "//") == 0) {
       while (i_ < s.size() && s[i_] != '\n')
@@ -124,9 +131,10 @@ std::string Lexer::rest_of_line() {
   return rest;
 }
 
+// Between '#' and a directive's name: blanks as GCC reads them (a form feed there is one too).
 void Lexer::skip_blanks() {
   while (i_ < text_.size()) {
-    if (text_[i_] == ' ' || text_[i_] == '\t') {
+    if (is_blank(text_[i_])) {
       ++i_;
     } else if (text_.compare(i_, 2, "/*") == 0) {
       const auto end = text_.find("*/", i_ + 2);

@@ -250,6 +250,7 @@ class Grader::Pipeline {
     fs::create_directories(run_folder_);
     fs::create_directories(g_.settings_.work / "tmp");
     g_.isolation_.give_to_sandbox(g_.settings_.work / "tmp");
+    stand_ins_ = prepare_stand_ins(kit_, g_.settings_.work / "stand-ins");
     limits_text_.time = generous ? "60 s while measuring the reference" : g_.time_limit_text();
   }
 
@@ -314,6 +315,7 @@ class Grader::Pipeline {
   bool generous_;
   fs::path run_folder_;
   LimitsText limits_text_;
+  StandIns stand_ins_;  // what the policy's own reading of the copies includes
 
   // The compiler's and the linker's temporary files go to the sandbox's scratch (or, without
   // namespaces, to the work folder), never elsewhere.
@@ -332,7 +334,8 @@ class Grader::Pipeline {
     view.bindings = {{b.copy, {}, false},
                      {b.folder, {}, true},
                      {kit_.headers, {}, false},
-                     {kit_.pch, {}, false}};
+                     {kit_.pch, {}, false},
+                     {stand_ins_.folder.parent_path(), {}, false}};
     if (!kit_.linker_script.empty()) view.bindings.push_back({kit_.linker_script, {}, false});
     for (const fs::path& part : kit_.library_parts.at(b.task))
       view.bindings.push_back({part, {}, false});
@@ -355,11 +358,72 @@ class Grader::Pipeline {
     return c;
   }
 
-  // Preprocesses the task's files one at a time (each `-E`, in the sandbox) and checks what the
-  // preprocessor made of them and which files they included; then compiles.
+  // Preprocesses the task's files one at a time, each twice in the sandbox: against the policy's
+  // stand-ins (policy.hpp, StandIns: every line of the output is the copy's, and all of it is
+  // checked), then as the build does (`-E`: what the library's macros made of the copy's lines,
+  // and which files they included); then compiles.
   void preprocess(const std::shared_ptr<TaskBuild>& b, std::size_t index,
                   std::vector<std::string> unchecked) {
     if (index == b->sources.size()) return compile_checked(b);
+    const std::string& source = b->sources[index];
+    const fs::path output = b->folder / (fs::path(source).stem().string() + ".own.ii");
+    std::vector<std::string> argv = stand_in_flags(kit_.plain.compile, stand_ins_);
+    for (const std::string& arg :
+         {std::string("-include"), stand_ins_.macros.string(), std::string("-E"),
+          (b->copy / source).string(), std::string("-o"), output.string()})
+      argv.push_back(arg);
+    Command c = build_command(*b, std::move(argv), b->folder);
+    add("preprocess (policy)", std::move(c),
+        [this, b, index, output, unchecked](Outcome o) mutable {
+          if (!preprocessed(b, o)) return;
+          std::ifstream in(output);
+          const Preprocessed p = check_stand_in_output(in, b->copy, stand_ins_);
+          if (p.breach) return fail_all(b, "not graded: " + p.breach->text());
+          if (!check_included(b, p.own_files, unchecked)) return;
+          std::error_code error;
+          fs::remove(output, error);
+          preprocess_as_built(b, index, std::move(unchecked));
+        });
+  }
+
+  // False, the task failed, when a preprocessing did not succeed: a file that does not
+  // preprocess does not compile either (and what was not checked is never compiled), as the
+  // preprocessor's messages say.
+  bool preprocessed(const std::shared_ptr<TaskBuild>& b, const Outcome& o) {
+    if (o.exited && o.exit_code == 0) return true;
+    if (const std::string fault = fault_of(o, "the preprocessor"); !fault.empty()) {
+      fault_all(b, fault);
+      return false;
+    }
+    std::string messages = stop_text(o.stopped, o.output) + o.start_error +
+                           student_paths(o.output, b->copy, kit_.root);
+    if (quotes_foreign_file(o.output, b->copy))
+      messages =
+          "(the compiler's messages are not shown: they quote a file that is not "
+          "your submission's)\n";
+    fail_all(b, "does not compile:\n" + first_lines(messages, 60));
+    return false;
+  }
+
+  // Checks the copy's files in `included` that `unchecked` does not list yet as written (and
+  // lists them); false, the task failed, when one breaks the policy.
+  bool check_included(const std::shared_ptr<TaskBuild>& b, const std::vector<std::string>& included,
+                      std::vector<std::string>& unchecked) {
+    std::vector<std::string> fresh;
+    for (const std::string& file : included)
+      if (std::find(unchecked.begin(), unchecked.end(), file) == unchecked.end()) {
+        unchecked.push_back(file);
+        fresh.push_back(file);
+      }
+    if (const auto breach = check_sources(b->copy, fresh)) {
+      fail_all(b, "not graded: " + breach->text());
+      return false;
+    }
+    return true;
+  }
+
+  void preprocess_as_built(const std::shared_ptr<TaskBuild>& b, std::size_t index,
+                           std::vector<std::string> unchecked) {
     const std::string& source = b->sources[index];
     const fs::path output = b->folder / (fs::path(source).stem().string() + ".ii");
     std::vector<std::string> argv = kit_.plain.compile;
@@ -368,30 +432,11 @@ class Grader::Pipeline {
       argv.push_back(arg);
     Command c = build_command(*b, std::move(argv), b->folder);
     add("preprocess", std::move(c), [this, b, index, output, unchecked](Outcome o) mutable {
-      // A file that does not preprocess does not compile either (and what was not checked is
-      // never compiled): the preprocessor's messages say why.
-      if (!o.exited || o.exit_code != 0) {
-        if (const std::string fault = fault_of(o, "the preprocessor"); !fault.empty())
-          return fault_all(b, fault);
-        std::string messages = stop_text(o.stopped, o.output) + o.start_error +
-                               student_paths(o.output, b->copy, kit_.root);
-        if (quotes_foreign_file(o.output, b->copy))
-          messages =
-              "(the compiler's messages are not shown: they quote a file that is not "
-              "your submission's)\n";
-        return fail_all(b, "does not compile:\n" + first_lines(messages, 60));
-      }
+      if (!preprocessed(b, o)) return;
       std::ifstream in(output);
       const Preprocessed p = check_preprocessed(in, include_roots(*b));
       if (p.breach) return fail_all(b, "not graded: " + p.breach->text());
-      std::vector<std::string> fresh;
-      for (const std::string& file : p.own_files)
-        if (std::find(unchecked.begin(), unchecked.end(), file) == unchecked.end()) {
-          unchecked.push_back(file);
-          fresh.push_back(file);
-        }
-      if (const auto breach = check_sources(b->copy, fresh))
-        return fail_all(b, "not graded: " + breach->text());
+      if (!check_included(b, p.own_files, unchecked)) return;
       std::error_code error;
       fs::remove(output, error);
       preprocess(b, index + 1, std::move(unchecked));

@@ -1,6 +1,7 @@
 #include "policy.hpp"
 
 #include "cpp_lexer.hpp"
+#include "process.hpp"
 
 #include <algorithm>
 #include <array>
@@ -8,6 +9,10 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
 
 namespace springlab::grader {
 namespace {
@@ -72,6 +77,18 @@ std::string build_telling_text(std::string_view name) {
          " tells one build of your code from the other (plain, and with the sanitizers): a "
          "submission must compute the same thing in both, so it may not use it";
 }
+// The policy's own preprocessing reads empty stand-ins for the headers (stand_in_flags), which
+// __has_include would see through: it could take one branch there and another in the build.
+std::string has_include_text(std::string_view name) {
+  return std::string(name) +
+         " is not allowed: a submission includes the headers it needs, without asking which "
+         "files the grader's machine holds";
+}
+std::string line_marker_text() {
+  return "a line marker (#line, or # and a number) is not allowed: it tells the compiler that the "
+         "lines after it come from another file or line, which would hide them from the "
+         "grader's checks";
+}
 std::string pragma_text(std::string_view pragma) {
   return "#pragma " + std::string(pragma) +
          " is not allowed: a pragma changes how the code is built (#pragma once and #pragma GCC "
@@ -83,6 +100,7 @@ std::optional<std::string> identifier_breach(std::string_view id) {
   if (id == "__attribute__" || id == "__attribute" || id == "__declspec") return attribute_text(id);
   if (id == "_Pragma")
     return std::string("_Pragma is not allowed: a pragma changes how the code is built");
+  if (id == "__has_include" || id == "__has_include_next") return has_include_text(id);
   for (const char* name : build_telling)
     if (id == name) return build_telling_text(id);
   for (const char* prefix : build_telling_prefixes)
@@ -143,6 +161,8 @@ std::optional<std::pair<int, std::string>> check_text(const std::string& source)
   while (lexer.next(t)) {
     if (t.kind == Token::directive) {
       if (t.text.empty()) continue;  // the null directive
+      if (t.text == "line" || std::isdigit(static_cast<unsigned char>(t.text[0])))
+        return std::pair{t.line, line_marker_text()};
       if (std::find(allowed_directives.begin(), allowed_directives.end(), t.text) ==
           allowed_directives.end())
         return std::pair{t.line, "#" + t.text + " is not allowed in a submission"};
@@ -180,6 +200,50 @@ std::string read_file(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+std::string control_text(unsigned char c) {
+  static const char* const digits = "0123456789ABCDEF";
+  const std::string byte = {'0', 'x', digits[c >> 4], digits[c & 15]};
+  return std::string(c == 0 ? "a NUL byte" : "a control character") + " (" + byte +
+         ") is not allowed in a source file: an editor does not show it, and the compiler may "
+         "read it otherwise than the grader's checks would; save the file as plain text";
+}
+
+std::string lone_return_text() {
+  return "a carriage return that does not end a line is not allowed: the compiler takes it "
+         "for a line break where an editor may show none, and it could make the compiler and "
+         "the grader's checks read the code differently; save the file with ordinary line ends";
+}
+
+// Bytes on which a reading of the text and the compiler's may differ: GCC takes NUL and
+// vertical tab for blanks (also right after '#', and between a backslash and the end of a line)
+// and a carriage return alone for a line break; no other control character belongs in C++
+// source, so none is let through for a reading to disagree on. Tab, form feed
+// and the carriage return of a CRLF line end are ordinary text (the kit's lexer reads them as
+// GCC does). Bytes from 0x80 up are left alone: comments in other languages are UTF-8, or an
+// older encoding, and GCC never takes such a byte for a blank or a line break.
+std::optional<std::pair<int, std::string>> character_breach(std::string_view text) {
+  int line = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c == '\n') {
+      ++line;
+    } else if (c == '\r') {
+      if (i + 1 == text.size() || text[i + 1] != '\n') return std::pair{line, lone_return_text()};
+    } else if ((c < 0x20 && c != '\t' && c != '\f') || c == 0x7f) {
+      return std::pair{line, control_text(c)};
+    }
+  }
+  return std::nullopt;
+}
+
+// A file's text as the compiler reads it from its first byte: GCC drops a leading UTF-8 byte
+// order mark, so the checks drop it too (ignoring it instead would leave it glued to the first
+// line, and a directive there unseen).
+std::string without_byte_order_mark(std::string text) {
+  if (text.rfind("\xEF\xBB\xBF", 0) == 0) text.erase(0, 3);
+  return text;
+}
+
 }  // namespace
 
 bool is_within(const fs::path& file, const fs::path& folder) {
@@ -198,9 +262,12 @@ bool is_standard_header(std::string_view name) {
 
 std::optional<PolicyBreach> check_sources(const fs::path& copy,
                                           const std::vector<std::string>& files) {
-  for (const std::string& name : files)
-    if (auto breach = check_text(read_file(copy / name)))
+  for (const std::string& name : files) {
+    const std::string text = without_byte_order_mark(read_file(copy / name));
+    if (auto breach = character_breach(text))
       return PolicyBreach{name, breach->first, breach->second};
+    if (auto breach = check_text(text)) return PolicyBreach{name, breach->first, breach->second};
+  }
   return std::nullopt;
 }
 
@@ -210,7 +277,7 @@ namespace {
 struct Marker {
   int line = 0;
   std::string file;
-  bool enters = false, returns = false;
+  bool enters = false, returns = false, system = false;
 };
 
 std::optional<Marker> read_marker(const std::string& text) {
@@ -226,10 +293,80 @@ std::optional<Marker> read_marker(const std::string& text) {
     if (text[i] == '\\' && i + 1 < text.size()) ++i;  // GCC escapes quotes and backslashes
     m.file += text[i];
   }
-  const std::string flags = i + 1 < text.size() ? text.substr(i + 1) : "";
-  m.enters = flags.rfind(" 1", 0) == 0;
-  m.returns = flags.rfind(" 2", 0) == 0;
+  std::istringstream flags(i + 1 < text.size() ? text.substr(i + 1) : "");
+  for (int flag = 0; flags >> flag;) {
+    m.enters = m.enters || flag == 1;
+    m.returns = m.returns || flag == 2;
+    m.system = m.system || flag == 3;
+  }
   return m;
+}
+
+// Where the preprocessor's output is, by its line markers, and whether each marker is one the
+// preprocessor made: after the first lines (the command line's), it enters a file and returns
+// to the one that included it, and otherwise names only the file it is in (to skip blank
+// lines). A marker that names another file without entering or leaving one was written in the
+// source, whatever the file it names.
+class MarkerWalk {
+ public:
+  struct Open {
+    fs::path file;
+    int line = 0;
+  };
+  const Open& top() const { return stack_.back(); }
+  Open& top() { return stack_.back(); }
+  /// True once the output has reached the first line of the file preprocessed.
+  bool started() const { return started_; }
+  /// Follows `m` (its file lexically normal); false when the preprocessor did not make it.
+  bool follow(const Marker& m, const fs::path& file) {
+    if (++markers_ == 1) main_ = file;
+    const bool rename = !m.enters && !m.returns;
+    if (started_ && rename && file != top().file) return false;
+    if (started_ && m.returns && (stack_.size() < 2 || stack_[stack_.size() - 2].file != file))
+      return false;
+    if (m.enters) stack_.push_back({file, m.line});
+    if (m.returns && stack_.size() > 1) stack_.pop_back();
+    if (!m.enters) top() = {file, m.line};
+    started_ = started_ || (markers_ > 1 && rename && file == main_);
+    return true;
+  }
+
+ private:
+  std::vector<Open> stack_{{"", 0}};
+  int markers_ = 0;
+  fs::path main_;
+  bool started_ = false;
+};
+
+// The lines of one file of the copy that the output shows in a row, checked together (a raw
+// string may span them) once the next marker or the end comes.
+struct Chunk {
+  std::string text;
+  fs::path file;
+  int line = 0;
+  void add(const MarkerWalk::Open& at, const std::string& output_line) {
+    if (text.empty()) {
+      file = at.file;
+      line = at.line;
+    }
+    text += output_line + '\n';
+  }
+  // The chunk's first breach, and then an empty chunk.
+  std::optional<PolicyBreach> flush() {
+    std::optional<PolicyBreach> result;
+    if (!text.empty())
+      if (auto breach = check_text(text))
+        result = PolicyBreach{file.filename().string(), line + breach->first - 1,
+                              breach->second + " (written so through a macro)"};
+    text.clear();
+    return result;
+  }
+};
+
+void add_own_file(Preprocessed& result, const fs::path& file) {
+  const std::string name = file.filename().string();
+  if (std::find(result.own_files.begin(), result.own_files.end(), name) == result.own_files.end())
+    result.own_files.push_back(name);
 }
 
 // Why a copy's file may not include `header`, or "".
@@ -253,58 +390,179 @@ std::string header_problem(const fs::path& header, const IncludeRoots& roots) {
 
 Preprocessed check_preprocessed(std::istream& output, const IncludeRoots& roots) {
   Preprocessed result;
-  struct Open {
-    fs::path file;
-    int line = 0;
-  };
-  std::vector<Open> stack{{"", 0}};
-  std::string chunk;  // consecutive lines of a copy's file, lexed together (raw strings)
-  int chunk_line = 0;
-  fs::path chunk_file;
+  MarkerWalk walk;
+  Chunk chunk;
   const auto own = [&](const fs::path& file) { return is_within(file, roots.copy); };
-  const auto flush = [&] {
-    if (!chunk.empty() && !result.breach)
-      if (auto breach = check_text(chunk))
-        result.breach = PolicyBreach{chunk_file.filename().string(), chunk_line + breach->first - 1,
-                                     breach->second + " (written so through a macro)"};
-    chunk.clear();
-  };
   std::string text;
   while (!result.breach && std::getline(output, text)) {
-    Open& top = stack.back();
     if (const auto marker = read_marker(text)) {
-      flush();
+      result.breach = chunk.flush();
       const fs::path file = fs::path(marker->file).lexically_normal();
-      if (marker->enters) {
-        if (own(top.file)) {
-          if (std::string problem = header_problem(file, roots); !problem.empty()) {
-            result.breach = PolicyBreach{top.file.filename().string(), top.line, problem};
-            break;
-          }
+      const MarkerWalk::Open at = walk.top();
+      if (marker->enters && own(at.file))
+        if (std::string problem = header_problem(file, roots); !problem.empty()) {
+          result.breach = PolicyBreach{at.file.filename().string(), at.line, problem};
+          break;
         }
-        if (own(file) && std::find(result.own_files.begin(), result.own_files.end(),
-                                   file.filename().string()) == result.own_files.end())
-          result.own_files.push_back(file.filename().string());
-        stack.push_back({file, marker->line});
-      } else {
-        if (marker->returns && stack.size() > 1) stack.pop_back();
-        stack.back().file = file;
-        stack.back().line = marker->line;
+      if (!walk.follow(*marker, file)) {
+        result.breach = PolicyBreach{at.file.filename().string(), at.line, line_marker_text()};
+        break;
       }
+      if (marker->enters && own(file)) add_own_file(result, file);
       continue;
     }
-    if (own(top.file)) {
-      if (chunk.empty()) {
-        chunk_line = top.line;
-        chunk_file = top.file;
-      }
-      // What the preprocessor passes on of a pragma is its directive: checked as written.
-      chunk += text + '\n';
-    }
-    ++top.line;
+    // What the preprocessor passes on of a pragma is its directive: checked as written.
+    if (own(walk.top().file)) chunk.add(walk.top(), text);
+    ++walk.top().line;
   }
-  flush();
+  if (!result.breach) result.breach = chunk.flush();
   return result;
+}
+
+namespace {
+
+// The number of lines of a file of the copy (a line marker may not name a later one).
+int line_count(const fs::path& file) {
+  const std::string text = read_file(file);
+  return int(std::count(text.begin(), text.end(), '\n')) + 1;
+}
+
+// A marker that MarkerWalk lets pass but the policy's own preprocessing never makes: there, no
+// header is a system header (nothing is included by -isystem), files are entered only from the
+// copy and the stand-ins, and a line number never lies past the end of its file.
+bool stand_in_marker_forged(const Marker& m, const fs::path& file, const fs::path& copy,
+                            const StandIns& stand_ins, std::map<fs::path, int>& lines) {
+  if (m.system) return true;
+  if (m.enters) return !is_within(file, copy) && !is_within(file, stand_ins.folder);
+  if (!is_within(file, copy)) return false;
+  if (lines.count(file) == 0) lines[file] = line_count(file);
+  return m.line > lines[file];
+}
+
+}  // namespace
+
+Preprocessed check_stand_in_output(std::istream& output, const fs::path& copy,
+                                   const StandIns& stand_ins) {
+  Preprocessed result;
+  MarkerWalk walk;
+  Chunk chunk;
+  std::map<fs::path, int> lines;
+  std::string text;
+  while (!result.breach && std::getline(output, text)) {
+    if (const auto marker = read_marker(text)) {
+      result.breach = chunk.flush();
+      const fs::path file = fs::path(marker->file).lexically_normal();
+      const MarkerWalk::Open at = walk.top();
+      const bool started = walk.started();
+      if (!walk.follow(*marker, file) ||
+          (started && stand_in_marker_forged(*marker, file, copy, stand_ins, lines))) {
+        result.breach = PolicyBreach{at.file.filename().string(), at.line, line_marker_text()};
+        break;
+      }
+      if (marker->enters && is_within(file, copy)) add_own_file(result, file);
+      continue;
+    }
+    // Every line after the command line's is the copy's: the stand-ins are empty.
+    if (walk.started()) chunk.add(walk.top(), text);
+    ++walk.top().line;
+  }
+  if (!result.breach) result.breach = chunk.flush();
+  return result;
+}
+
+std::vector<std::string> stand_in_flags(const std::vector<std::string>& compile,
+                                        const StandIns& stand_ins) {
+  std::vector<std::string> flags;
+  for (std::size_t i = 0; i < compile.size(); ++i) {
+    const std::string& flag = compile[i];
+    if (flag == "-isystem" || flag == "-include" || flag == "-iquote" || flag == "-idirafter" ||
+        flag == "-I") {
+      ++i;  // and its folder or file
+      continue;
+    }
+    if (starts_with(flag, "-I") || flag == "-Winvalid-pch") continue;
+    flags.push_back(flag);
+  }
+  for (const std::string& flag : {std::string("-nostdinc"), "-I" + stand_ins.folder.string(),
+                                  std::string("-fno-working-directory")})
+    flags.push_back(flag);
+  return flags;
+}
+
+std::string added_definitions(const std::string& with, const std::string& without) {
+  std::set<std::string> known;
+  std::istringstream before(without), after(with);
+  for (std::string line; std::getline(before, line);)
+    known.insert(line);
+  std::string added;
+  for (std::string line; std::getline(after, line);)
+    if (known.count(line) == 0) added += line + '\n';
+  return added;
+}
+
+void write_stand_ins(const StandIns& stand_ins, const IncludeRoots& roots,
+                     const std::string& macros) {
+  const auto stand_in = [&](const fs::path& name) {
+    const fs::path file = stand_ins.folder / name;
+    fs::create_directories(file.parent_path());
+    std::ofstream(file, std::ios::trunc);
+  };
+  for (const char* name : standard_headers)
+    stand_in(name);
+  // Eigen's and the kit's headers by the names they have on disk, so that a name that is not
+  // there fails here as it does in the build.
+  const auto mirror = [&](const fs::path& dir, const fs::path& sub) {
+    std::error_code error;
+    for (const auto& entry : fs::recursive_directory_iterator(dir / sub, error))
+      if (entry.is_regular_file()) stand_in(sub / entry.path().lexically_relative(dir / sub));
+  };
+  mirror(roots.kit_headers, "springlab");
+  for (const fs::path& dir : roots.eigen)
+    mirror(dir, "Eigen");
+  std::ofstream(stand_ins.macros, std::ios::trunc) << macros;
+  // Readable by the user the sandbox runs commands as, whatever the umask.
+  const fs::perms read = fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read |
+                         fs::perms::others_read;
+  const fs::perms enter = fs::perms::owner_exec | fs::perms::group_exec | fs::perms::others_exec;
+  const fs::path root = stand_ins.folder.parent_path();
+  fs::permissions(root, read | enter);
+  for (const auto& entry : fs::recursive_directory_iterator(root))
+    fs::permissions(entry.path(), entry.is_directory() ? read | enter : read);
+}
+
+StandIns prepare_stand_ins(const Kit& kit, const fs::path& folder) {
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  const StandIns stand_ins{folder / "headers", folder / "macros.hpp"};
+  IncludeRoots roots;
+  roots.kit_headers = kit.headers;
+  for (std::size_t i = 0; i + 1 < kit.plain.compile.size(); ++i)
+    if (kit.plain.compile[i] == "-isystem") roots.eigen.emplace_back(kit.plain.compile[i + 1]);
+  // Each listing written to a file: the compiler's warnings go elsewhere.
+  const auto listing = [&](std::vector<std::string> argv, const fs::path& file) {
+    for (const std::string arg : {"-dM", "-E", "-x", "c++", "/dev/null", "-o", file.c_str()})
+      argv.push_back(arg);
+    Command c;
+    c.argv = std::move(argv);
+    c.env = plain_environment();
+    c.directory = folder.string();
+    c.limits.file_size_mb = 32;
+    Outcome outcome;
+    ProcessPool pool(1);
+    pool.add(std::move(c), [&](Outcome o) { outcome = std::move(o); });
+    pool.run();
+    if (!outcome.exited || outcome.exit_code != 0)
+      throw std::runtime_error("the compiler could not list the macros of submission code: " +
+                               outcome.start_error + outcome.output);
+    std::string text = read_file(file);
+    fs::remove(file);
+    return text;
+  };
+  const std::string with = listing(kit.plain.compile, folder / "with.txt"),
+                    without = listing(stand_in_flags(kit.plain.compile, stand_ins),
+                                      folder / "without.txt");
+  write_stand_ins(stand_ins, roots, added_definitions(with, without));
+  return stand_ins;
 }
 
 }  // namespace springlab::grader
