@@ -317,12 +317,14 @@ class MarkerWalk {
   Open& top() { return stack_.back(); }
   /// True once the output has reached the first line of the file preprocessed.
   bool started() const { return started_; }
-  /// Follows `m` (its file lexically normal); false when the preprocessor did not make it.
-  bool follow(const Marker& m, const fs::path& file) {
+  /// Follows `m` (its file lexically normal); false when the preprocessor did not make it. Only
+  /// where `checked` (a system header's own markers are its business).
+  bool follow(const Marker& m, const fs::path& file, bool checked = true) {
     if (++markers_ == 1) main_ = file;
     const bool rename = !m.enters && !m.returns;
-    if (started_ && rename && file != top().file) return false;
-    if (started_ && m.returns && (stack_.size() < 2 || stack_[stack_.size() - 2].file != file))
+    const bool check = started_ && checked;
+    if (check && rename && file != top().file) return false;
+    if (check && m.returns && (stack_.size() < 2 || stack_[stack_.size() - 2].file != file))
       return false;
     if (m.enters) stack_.push_back({file, m.line});
     if (m.returns && stack_.size() > 1) stack_.pop_back();
@@ -404,7 +406,7 @@ Preprocessed check_preprocessed(std::istream& output, const IncludeRoots& roots)
           result.breach = PolicyBreach{at.file.filename().string(), at.line, problem};
           break;
         }
-      if (!walk.follow(*marker, file)) {
+      if (!walk.follow(*marker, file, own(at.file))) {
         result.breach = PolicyBreach{at.file.filename().string(), at.line, line_marker_text()};
         break;
       }
