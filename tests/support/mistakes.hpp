@@ -2,7 +2,7 @@
 // (the opposite sign, a factor 2 or 1/2, a missing term, a value computed another way) named in
 // a student's words. A test computes the candidate wrong values itself and passes them with
 // their names; the first one the student's value matches is said, as an INFO line that the
-// grader's reporter shows under "likely mistake" (tests/grader/harness/reporter.cpp).
+// grader's reporter shows under "likely mistake" (tests/feedback/reporter.cpp).
 #pragma once
 
 #include "springlab/parameters.hpp"

@@ -9,6 +9,7 @@
 #include "points.hpp"
 #include "process.hpp"
 #include "submission.hpp"
+#include "task_results.hpp"
 
 #include <functional>
 #include <map>
@@ -32,31 +33,6 @@ struct Settings {
   /// Run each task's tests in order, plainly, and stop at its first failure (the rest are "not
   /// run"): what a student reads first, at a fraction of the cost (springlab-mutate's measure).
   bool first_failure = false;
-};
-
-struct TestResult {
-  const TestInfo* test = nullptr;
-  bool passed = false;
-  std::string message;  ///< why it failed, for the student
-  std::string printed;  ///< what the code printed in the deciding run (the kept part)
-  std::size_t printed_bytes = 0;
-  double seconds = 0.0;            ///< the plain run's wall time
-  double sanitized_seconds = 0.0;  ///< the sanitized run's, when it ran
-};
-
-struct TaskResult {
-  int task = 0;
-  std::vector<std::string> notes;  ///< files left out or replaced by the starter code
-  std::string problem;  ///< why no test could run (does not compile, rejected); "" otherwise
-  /// Why the task was not graded because of the grader itself (its disk full, a submission it
-  /// could not read, a process it could not start): never the student's grade. "" otherwise.
-  std::string fault;
-  std::string warnings;             ///< what the compiler said of code that compiled
-  std::vector<std::string> review;  ///< calls no task needs, for the instructor (checks.hpp)
-  std::vector<TestResult> tests;
-  double points() const;
-  double max_points() const;
-  int passed() const;
 };
 
 struct SubmissionResult {

@@ -15,83 +15,6 @@
 namespace springlab::grader {
 namespace {
 
-constexpr std::size_t printed_in_feedback = 2048;  // bytes of a failing test's output shown
-
-std::string indented(const std::string& text, const std::string& indent) {
-  std::istringstream lines(text);
-  std::string line, result;
-  while (std::getline(lines, line))
-    result += indent + line + '\n';
-  return result;
-}
-
-std::string bytes_text(std::size_t bytes) {
-  std::ostringstream out;
-  if (bytes < 10000)
-    out << bytes << " bytes";
-  else if (bytes < (10u << 20))
-    out << bytes / 1024 << " KB";
-  else
-    out << (bytes >> 20) << " MB";
-  return out.str();
-}
-
-// The explanation of one failed test, with what its code printed (the start of it).
-std::string failure_text(const TestResult& t, std::size_t shown) {
-  std::string text = printable(t.message) + '\n';
-  if (t.printed_bytes > 0) {
-    text += "your code printed " + bytes_text(t.printed_bytes) +
-            (t.printed_bytes > shown ? ", of which the first " + bytes_text(shown) : "") + ":\n";
-    text += indented(printable(t.printed.substr(0, shown)), "| ");
-  }
-  return text;
-}
-
-std::string count_text(const TaskResult& r) {
-  return std::to_string(r.passed()) + " of " + std::to_string(r.tests.size()) + " tests pass (" +
-         points_text(r.points()) + " of " + points_text(r.max_points()) + " points)";
-}
-
-// What a task whose every test failed on a starter stub asks for first ("write verlet_step in
-// tasks/task4_verlet/verlet.cpp, handout section 4"), from the stub's message ("Task 4 is not
-// implemented yet: write ... (see handout section 4)"); "" for a task that was started.
-std::string not_started(const TaskResult& r) {
-  const std::string marker = " is not implemented yet: ";
-  const bool untouched =
-      !r.tests.empty() && std::all_of(r.tests.begin(), r.tests.end(), [&](const TestResult& t) {
-        return !t.passed && t.message.find(marker) != std::string::npos;
-      });
-  if (!untouched) return "";
-  const std::string& m = r.tests.front().message;
-  std::string what = m.substr(m.find(marker) + marker.size());
-  what = what.substr(0, what.find('\n'));
-  if (const auto see = what.rfind(" (see "); see != std::string::npos && what.back() == ')')
-    what = what.substr(0, see) + ", " + what.substr(see + 6, what.size() - see - 7);
-  return printable(what);
-}
-
-// A problem's first line ends with a colon when its details follow; the summary has none.
-std::string without_colon(std::string line) {
-  while (!line.empty() && (line.back() == ':' || line.back() == ' '))
-    line.pop_back();
-  return line;
-}
-
-// A task's line in the summary: all pass, not started (what to write first), or the count and
-// the first failure.
-std::string state_text(const TaskResult& r) {
-  const auto failed =
-      std::find_if(r.tests.begin(), r.tests.end(), [](const TestResult& t) { return !t.passed; });
-  const std::string points =
-      " (" + points_text(r.points()) + " of " + points_text(r.max_points()) + " points)";
-  if (failed == r.tests.end())
-    return (r.tests.size() == 1 ? "its 1 test passes"
-                                : "all " + std::to_string(r.tests.size()) + " tests pass") +
-           points;
-  if (const std::string what = not_started(r); !what.empty()) return "not started (" + what + ")";
-  return count_text(r) + "; first failure: " + printable(failed->test->name);
-}
-
 std::string xml(const std::string& text) {
   std::string out;
   for (const char c : printable(text)) {
@@ -163,92 +86,8 @@ void write_file(const fs::path& file, const std::string& text) {
   if (::rename(partial.c_str(), file.c_str()) != 0) fail(errno);
 }
 
-std::string points_text(double points) {
-  std::ostringstream out;
-  out << std::round(points * 100.0) / 100.0;
-  return out.str();
-}
-
-std::string escaped(const std::string& name) {
-  const std::string kept = printable(name);  // byte for byte, '?' where a byte was not kept
-  std::string out;
-  for (std::size_t i = 0; i < name.size(); ++i) {
-    const auto c = static_cast<unsigned char>(name[i]);
-    if (c < 0x20 || c == 0x7f || (kept[i] == '?' && c != '?')) {
-      char hex[5];
-      std::snprintf(hex, sizeof hex, "\\x%02x", unsigned(c));
-      out += hex;
-    } else {
-      out += char(c);
-    }
-  }
-  return out;
-}
-
-std::string printable(const std::string& text) {
-  std::string out;
-  out.reserve(text.size());
-  for (std::size_t i = 0; i < text.size();) {
-    const auto c = static_cast<unsigned char>(text[i]);
-    if (c < 0x80) {
-      out += (c < 0x20 && c != '\n' && c != '\t') || c == 0x7f ? '?' : char(c);
-      ++i;
-      continue;
-    }
-    // A UTF-8 sequence: a lead byte for 2-4 bytes, then continuation bytes 10xxxxxx; no
-    // overlong forms, no surrogates (U+D800-DFFF), nothing above U+10FFFF.
-    const std::size_t length = c >= 0xf0 && c <= 0xf4 ? 4 : c >= 0xe0 ? 3 : c >= 0xc2 ? 2 : 0;
-    bool valid = length > 0 && i + length <= text.size();
-    for (std::size_t k = 1; valid && k < length; ++k)
-      valid = (static_cast<unsigned char>(text[i + k]) & 0xc0) == 0x80;
-    if (valid && length > 2) {
-      const auto second = static_cast<unsigned char>(text[i + 1]);
-      valid = !(c == 0xe0 && second < 0xa0) && !(c == 0xed && second >= 0xa0) &&
-              !(c == 0xf0 && second < 0x90) && !(c == 0xf4 && second >= 0x90);
-    }
-    if (valid) {
-      out.append(text, i, length);
-      i += length;
-    } else {
-      out += '?';
-      ++i;
-    }
-  }
-  return out;
-}
-
 std::string task_feedback(const SubmissionResult& result, int task, const Kit& kit) {
-  const TaskResult& r = result.tasks.at(task);
-  std::ostringstream out;
-  out << "==> Task " << task << ": the code in tasks/" << kit.task_folder(task)
-      << "/ (handout section " << task << ")\n";
-  for (const std::string& note : r.notes)
-    out << "  note: " << printable(note) << '\n';
-  if (!r.problem.empty()) {
-    out << indented(printable(r.problem), "  ");
-    out << "\n" << count_text(r) << ".\n";
-    return out.str();
-  }
-  if (!r.warnings.empty())
-    out << "  the compiler warns (the tests still run):\n"
-        << indented(printable(r.warnings), "    ");
-  // A task not started: every test stops at the stub, so its message is said once, below.
-  const bool untouched = !not_started(r).empty();
-  for (const TestResult& t : r.tests) {
-    out << "  " << t.test->name << " ... "
-        << (t.passed    ? "pass"
-            : untouched ? "not started"
-                        : "FAIL")
-        << (t.test->hidden ? std::string(" ") + hidden_mark : "") << '\n';
-    if (!t.passed && !untouched) out << indented(failure_text(t, printed_in_feedback), "        ");
-  }
-  out << '\n'
-      << count_text(r)
-      << (r.passed() == int(r.tests.size()) ? "."
-          : not_started(r).empty()          ? "; fix the first FAIL above first, then run again."
-                                            : "; not started yet: " + not_started(r) + ".")
-      << '\n';
-  return out.str();
+  return task_text(result.tasks.at(task), task, kit.task_folder(task));
 }
 
 std::string summary_feedback(const SubmissionResult& result) {
@@ -258,14 +97,7 @@ std::string summary_feedback(const SubmissionResult& result) {
   for (const std::string& note : result.submission.notes)
     out << "  note: " << printable(note) << '\n';
   for (const auto& [task, r] : result.tasks) {
-    out << "  task " << task << ": ";
-    if (r.problem.rfind("does not compile", 0) == 0)
-      out << "does not compile (0 of " << points_text(r.max_points()) << " points)\n";
-    else if (!r.problem.empty())
-      out << printable(without_colon(r.problem.substr(0, r.problem.find('\n')))) << " (0 of "
-          << points_text(r.max_points()) << " points)\n";
-    else
-      out << state_text(r) << '\n';
+    out << "  task " << task << ": " << summary_line(r) << '\n';
   }
   return out.str();
 }

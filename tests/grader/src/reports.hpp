@@ -5,14 +5,12 @@
 #pragma once
 
 #include "grading.hpp"
+#include "words.hpp"
 
 #include <string>
 #include <vector>
 
 namespace springlab::grader {
-
-/// The line that marks a hidden test in the feedback (instructors see it; students never do).
-inline constexpr const char* hidden_mark = "(hidden test: students see it after the due date)";
 
 /// Task `task`'s part of the feedback: a heading, one line per test (a hidden test's marked),
 /// the first failure of each failing test explained, and a closing count.
@@ -58,16 +56,5 @@ std::string results_folder(const std::string& name);
 /// and closed, then renamed over `file`. Throws std::runtime_error naming the file and why
 /// ("No space left on device").
 void write_file(const fs::path& file, const std::string& text);
-
-/// Points as people write them: "12", "2.5".
-std::string points_text(double points);
-
-/// `text` with control characters (but newlines and tabs) and invalid UTF-8 replaced by '?'.
-std::string printable(const std::string& text);
-
-/// A name (of a file, a folder) as printed anywhere: every control character, newlines and tabs
-/// included, and every byte of invalid UTF-8 written \xNN, so that no name can make a line of
-/// its own or move the terminal's cursor.
-std::string escaped(const std::string& name);
 
 }  // namespace springlab::grader

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "kit.hpp"
+#include "usage_error.hpp"
 
 #include <map>
 #include <stdexcept>
@@ -12,12 +13,6 @@
 #include <vector>
 
 namespace springlab::grader {
-
-/// Bad usage: the grader exits with status 2 and this message.
-class UsageError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
 
 enum class Layout { tasks_folder, repository, loose_files };
 

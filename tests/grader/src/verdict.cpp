@@ -41,24 +41,6 @@ std::string seconds(double s) {
   return out.str();
 }
 
-std::string signal_text(int signal) {
-  switch (signal) {
-    case SIGSEGV:
-      return "segmentation fault (an invalid memory access: an index out of range, or a null "
-             "pointer?)";
-    case SIGBUS:
-      return "bus error (an invalid memory access)";
-    case SIGFPE:
-      return "arithmetic error (an integer division by zero?)";
-    case SIGABRT:
-      return "aborted (a failed assertion, or an error nothing caught?)";
-    case SIGILL:
-      return "illegal instruction (a function that returns no value where one is due?)";
-    default:
-      return std::string("signal ") + std::to_string(signal) + " (" + strsignal(signal) + ")";
-  }
-}
-
 // The "key value" lines of the harness's record of how the worker ended.
 std::map<std::string, std::string> fields_of(const std::string& record) {
   std::map<std::string, std::string> fields;
@@ -205,19 +187,6 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
   if (message.find("std::bad_alloc") != std::string::npos && limits.address_space_mb > 0)
     message += "\n(out of memory: the limit is " + std::to_string(limits.address_space_mb) + " MB)";
   return {false, message};
-}
-
-std::string without_raw_lines(const std::string& message) {
-  std::string kept;
-  std::size_t start = 0;
-  while (start < message.size()) {
-    const std::size_t end = std::min(message.find('\n', start), message.size());
-    if (message.compare(start, 5, "raw: ") != 0)
-      kept.append(message, start, end - start).append("\n");
-    start = end + 1;
-  }
-  if (!kept.empty() && (message.empty() || message.back() != '\n')) kept.pop_back();
-  return kept;
 }
 
 }  // namespace springlab::grader

@@ -4,6 +4,8 @@
 // with its reason in words.
 #pragma once
 
+#include "words.hpp"  // without_raw_lines, signal_text
+
 #include "process.hpp"
 
 #include <string>
@@ -28,9 +30,5 @@ RunVerdict judge(const Outcome& outcome, const std::string& secret, const Limits
 
 /// The name of system call `number` on this machine ("openat"), or "number N".
 std::string system_call_name(long number);
-
-/// The message without the lines marked "raw: " (Catch2's file, line and expression, which the
-/// harness's reporter adds for instructors: springlab-grade --raw keeps them).
-std::string without_raw_lines(const std::string& message);
 
 }  // namespace springlab::grader

@@ -1,6 +1,6 @@
 #include "points.hpp"
 
-#include "submission.hpp"
+#include "usage_error.hpp"
 
 #include <toml++/toml.h>
 
