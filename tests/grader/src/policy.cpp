@@ -8,8 +8,10 @@
 #include <cctype>
 #include <cstring>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <map>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -388,37 +390,57 @@ std::string header_problem(const fs::path& header, const IncludeRoots& roots) {
   return include_text(name);
 }
 
-}  // namespace
+// What one preprocessing's output allows; the walk over it (walk_output) is the same for all.
+struct OutputRules {
+  std::function<bool(const fs::path&)> own;  ///< a file of the copy
+  /// Follows a line marker on `walk`; why it may not be there, or nothing.
+  std::function<std::optional<std::string>(const Marker&, const fs::path&, MarkerWalk&)> marker;
+  std::function<bool(const MarkerWalk&)> checks_line;  ///< an output line is the copy's, checked
+};
 
-Preprocessed check_preprocessed(std::istream& output, const IncludeRoots& roots) {
+// Reads a preprocessor's output: every line marker judged by `rules`, every line of the copy
+// checked (in chunks: a raw string may span lines), the copy's files entered listed. Stops at
+// the first breach.
+Preprocessed walk_output(std::istream& output, const OutputRules& rules) {
   Preprocessed result;
   MarkerWalk walk;
   Chunk chunk;
-  const auto own = [&](const fs::path& file) { return is_within(file, roots.copy); };
   std::string text;
   while (!result.breach && std::getline(output, text)) {
     if (const auto marker = read_marker(text)) {
       result.breach = chunk.flush();
       const fs::path file = fs::path(marker->file).lexically_normal();
       const MarkerWalk::Open at = walk.top();
-      if (marker->enters && own(at.file))
-        if (std::string problem = header_problem(file, roots); !problem.empty()) {
-          result.breach = PolicyBreach{at.file.filename().string(), at.line, problem};
-          break;
-        }
-      if (!walk.follow(*marker, file, own(at.file))) {
-        result.breach = PolicyBreach{at.file.filename().string(), at.line, line_marker_text()};
+      if (const auto why = rules.marker(*marker, file, walk)) {
+        result.breach = PolicyBreach{at.file.filename().string(), at.line, *why};
         break;
       }
-      if (marker->enters && own(file)) add_own_file(result, file);
+      if (marker->enters && rules.own(file)) add_own_file(result, file);
       continue;
     }
-    // What the preprocessor passes on of a pragma is its directive: checked as written.
-    if (own(walk.top().file)) chunk.add(walk.top(), text);
+    if (rules.checks_line(walk)) chunk.add(walk.top(), text);
     ++walk.top().line;
   }
   if (!result.breach) result.breach = chunk.flush();
   return result;
+}
+
+}  // namespace
+
+Preprocessed check_preprocessed(std::istream& output, const IncludeRoots& roots) {
+  OutputRules rules;
+  rules.own = [&](const fs::path& file) { return is_within(file, roots.copy); };
+  rules.marker = [&](const Marker& m, const fs::path& file,
+                     MarkerWalk& walk) -> std::optional<std::string> {
+    const bool from_copy = rules.own(walk.top().file);
+    if (m.enters && from_copy)
+      if (std::string problem = header_problem(file, roots); !problem.empty()) return problem;
+    if (!walk.follow(m, file, from_copy)) return line_marker_text();
+    return std::nullopt;
+  };
+  // What the preprocessor passes on of a pragma is its directive: checked as written.
+  rules.checks_line = [&](const MarkerWalk& walk) { return rules.own(walk.top().file); };
+  return walk_output(output, rules);
 }
 
 namespace {
@@ -445,31 +467,20 @@ bool stand_in_marker_forged(const Marker& m, const fs::path& file, const fs::pat
 
 Preprocessed check_stand_in_output(std::istream& output, const fs::path& copy,
                                    const StandIns& stand_ins) {
-  Preprocessed result;
-  MarkerWalk walk;
-  Chunk chunk;
   std::map<fs::path, int> lines;
-  std::string text;
-  while (!result.breach && std::getline(output, text)) {
-    if (const auto marker = read_marker(text)) {
-      result.breach = chunk.flush();
-      const fs::path file = fs::path(marker->file).lexically_normal();
-      const MarkerWalk::Open at = walk.top();
-      const bool started = walk.started();
-      if (!walk.follow(*marker, file) ||
-          (started && stand_in_marker_forged(*marker, file, copy, stand_ins, lines))) {
-        result.breach = PolicyBreach{at.file.filename().string(), at.line, line_marker_text()};
-        break;
-      }
-      if (marker->enters && is_within(file, copy)) add_own_file(result, file);
-      continue;
-    }
-    // Every line after the command line's is the copy's: the stand-ins are empty.
-    if (walk.started()) chunk.add(walk.top(), text);
-    ++walk.top().line;
-  }
-  if (!result.breach) result.breach = chunk.flush();
-  return result;
+  OutputRules rules;
+  rules.own = [&](const fs::path& file) { return is_within(file, copy); };
+  rules.marker = [&](const Marker& m, const fs::path& file,
+                     MarkerWalk& walk) -> std::optional<std::string> {
+    const bool started = walk.started();
+    if (!walk.follow(m, file) ||
+        (started && stand_in_marker_forged(m, file, copy, stand_ins, lines)))
+      return line_marker_text();
+    return std::nullopt;
+  };
+  // Every line after the command line's is the copy's: the stand-ins are empty.
+  rules.checks_line = [](const MarkerWalk& walk) { return walk.started(); };
+  return walk_output(output, rules);
 }
 
 std::vector<std::string> stand_in_flags(const std::vector<std::string>& compile,
