@@ -234,6 +234,11 @@ int run(App& app, const RunOptions& options, std::ostream& out, std::ostream& er
   if (!options.record.empty())
     out << "frames: " << printable(frame_file(options.record, 0)) << " ... "
         << printable(frame_file(options.record, long(frame_seconds.size()) - 1)) << '\n';
+  // Frames with nothing to keep: said, so that a missing image is not a surprise.
+  if (options.screenshot.empty() && options.record.empty() && !options.benchmark)
+    out << "frames: " << frame_seconds.size()
+        << " run without a window's input; nothing saved (--screenshot FILE keeps the last "
+           "frame, --record FOLDER every frame)\n";
   if (options.benchmark && !frame_seconds.empty()) {
     benchmark_report(frame_seconds, steps, dropped, seconds, stepping, app.session().time(),
                      app.stepping_thread(), out);
