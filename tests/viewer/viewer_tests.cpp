@@ -157,6 +157,41 @@ TEST_CASE("each particle is drawn at the screen position of its simulated positi
   CHECK(text(pixel_at(app.captured(), far)) == text(colour::background));
 }
 
+TEST_CASE(
+    "the default view follows the fabric as it sags, clear of the plots, until the user "
+    "zooms",
+    "[viewer][draw]") {
+  App app(options_for("task5"));
+  const auto all_in_view = [&app] {
+    const Particles& p = app.session().primary()->particles();
+    const double margin = app.camera().pixels_per_metre() * 0.5;  // half a spacing, px
+    const Viewport& area = app.camera().viewport();
+    for (int i = 0; i < p.size(); ++i) {
+      const sf::Vector2f at = app.camera().to_screen(p.position.col(i));
+      if (at.x < area.left + margin || at.x > area.left + area.width - margin ||
+          at.y < area.top + margin || at.y > area.top + area.height - margin)
+        return false;
+    }
+    return true;
+  };
+  const double fitted = app.camera().pixels_per_metre();
+  for (int frame = 0; frame < 120; ++frame) {  // 2 s: the fabric has sagged past its start
+    app.frame();
+    INFO("frame " << frame);
+    REQUIRE(all_in_view());
+  }
+  CHECK(app.camera().pixels_per_metre() < fitted);  // it did have to zoom out
+  // Zoomed in by hand: the view stays where the user put it.
+  app.handle(mouse_moved(app.camera().viewport().centre()));
+  app.frame();
+  app.handle(wheel_turned(15, app.camera().viewport().centre()));
+  const double zoomed = app.camera().pixels_per_metre();
+  for (int frame = 0; frame < 30; ++frame)
+    app.frame();
+  CHECK(app.camera().pixels_per_metre() == zoomed);
+  CHECK_FALSE(all_in_view());
+}
+
 TEST_CASE("the panel, the plots, the scene's label and the summary show one time and one energy",
           "[viewer][draw]") {
   // Each frame steps first and then draws: what the panel, the plots and the label read is the

@@ -272,9 +272,12 @@ void App::plan_drawing() {
   for (int v = 0; v < 2; ++v) {
     const Simulation* sim = v < plan.views ? simulation_of(v) : nullptr;
     RunState& run = plan.runs[std::size_t(v)];
-    if (sim)
+    if (sim) {
       run.capture(*sim, plan.arrows_on >= 0);
-    else
+      // Not while a particle is held: the world under the mouse must stay where it is.
+      if (session_.grabbed() < 0)
+        cameras_[std::size_t(v)].keep_in_view(run.position, sim->parameters().spacing);
+    } else
       run.sim = nullptr;
   }
   if (plan.overlay)

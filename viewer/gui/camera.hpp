@@ -16,8 +16,13 @@ struct Viewport {
 
 class Camera {
  public:
-  /// Shows every finite position with a margin, centred in the viewport.
+  /// Shows every finite position with a margin, centred in the viewport; the camera then
+  /// follows (keep_in_view) until the user pans or zooms.
   void fit(const Vectors& positions, double spacing);
+  /// While the camera follows: zooms out (never in) so that every finite position stays at
+  /// least a spacing inside the viewport, a fabric sagging under gravity included.
+  void keep_in_view(const Vectors& positions, double spacing);
+  bool follows() const { return follows_; }
   void set_viewport(const Viewport& viewport) { viewport_ = viewport; }
   const Viewport& viewport() const { return viewport_; }
 
@@ -29,9 +34,12 @@ class Camera {
   double pixels_per_metre() const { return scale_; }
 
  private:
+  void show(const Vec2& low, const Vec2& high);  // the world's box low..high fills the viewport
+
   Viewport viewport_;
   Vec2 centre_{0.0, 0.0};  // world point at the viewport's centre, m
   double scale_ = 100.0;   // pixels per metre
+  bool follows_ = false;   // since the last fit, no pan or zoom by the user
 };
 
 }  // namespace springlab::view
