@@ -20,7 +20,7 @@ struct SpringFamilyParameters {
   double rest_length = 1.0;  ///< ℓ0, m
 };
 
-/// Gravity, equation (5.2): F_i = m_i g on every free particle.
+/// Gravity, equation (5.2): F_i += m_i g on every particle (a pinned one is then held by (5.5)).
 struct GravityParameters {
   bool enabled = false;           ///< whether the scene has gravity at all
   Vec2 acceleration{0.0, -9.81};  ///< g, m/s² (y points up)
