@@ -12,6 +12,7 @@
 // so the result is the same to the bit for any number of threads.
 #pragma once
 
+#include "springlab/parallel.hpp"
 #include "springlab/types.hpp"
 #include "springlab/wind.hpp"
 
@@ -76,9 +77,8 @@ class GridForces {
   /// link row by link row, vectorised, in one thread (the viewer's plots ask for it every frame).
   double spring_energy(const Vectors& r) const;
 
-  /// Below this many particles one thread is faster than two (a parallel region costs a few
-  /// microseconds; a 50 × 50 fabric's forces about 40).
-  static constexpr int parallel_particles = 2500;
+  /// Below this many particles one thread is faster than two (parallel.hpp).
+  static constexpr int parallel_particles = parallel_force_particles;
 
   /// One family: every spring joins [row, col] to [row + di, col + dj] (di ≥ 0).
   struct Link {

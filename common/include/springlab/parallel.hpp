@@ -23,6 +23,10 @@ void set_thread_count(int n);
 /// Whether the kit was built with OpenMP (thread_count() can exceed 1).
 bool parallel_built();
 
+/// Below this many particles the fast force path (grid_forces.hpp) runs on one thread, faster
+/// than two (a parallel region costs a few microseconds; a 50 × 50 fabric's forces about 40).
+inline constexpr int parallel_force_particles = 2500;
+
 /// Below this many items (particles, springs) a pass runs on one thread: starting threads costs
 /// a few microseconds, as much as a pass over some 10,000 particles.
 inline constexpr long parallel_items = 16384;

@@ -35,7 +35,7 @@
 // (colours of 131072 springs or more) a colour is also split over threads (parallel.hpp), with
 // the same result. A projection's denominators depend only on s, k, b and the ends' masses: they
 // are computed once for each kind of spring, not per projection.
-#include "integrators.hpp"
+#include "integrators/integrators.hpp"
 #include "springlab/avx2.hpp"
 #include "springlab/parallel.hpp"
 

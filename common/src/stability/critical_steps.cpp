@@ -1,6 +1,6 @@
 // The step limits of all six integrators (stability.hpp): step matrices of the linear model,
 // bisection on their spectral radius, the per-mode formulas and the report of the runner.
-#include "numbers.hpp"
+#include "support/numbers.hpp"
 #include "springlab/eigen_solvers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"

@@ -1,7 +1,6 @@
 #include "springlab/memory_budget.hpp"
 
 #include "springlab/errors.hpp"
-#include "springlab/grid_forces.hpp"
 #include "springlab/parallel.hpp"
 
 // What the system says of memory: Linux's /proc and cgroups, POSIX's limits and page counts,
@@ -119,7 +118,7 @@ double one_thread_stack_bytes() {
 
 double thread_stack_bytes(const SceneParameters& p) {
   const double particles = double(p.rows) * double(p.cols);
-  if (particles < GridForces::parallel_particles) return 0.0;
+  if (particles < parallel_force_particles) return 0.0;
   return (thread_count() - 1) * one_thread_stack_bytes();
 }
 

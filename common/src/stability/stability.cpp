@@ -1,6 +1,6 @@
 #include "springlab/stability.hpp"
 
-#include "spring_matrices.hpp"
+#include "integrators/spring_matrices.hpp"
 #include "springlab/eigen_solvers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"

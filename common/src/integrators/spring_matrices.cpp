@@ -1,4 +1,4 @@
-#include "spring_matrices.hpp"
+#include "integrators/spring_matrices.hpp"
 
 #include "springlab/integrator.hpp"
 

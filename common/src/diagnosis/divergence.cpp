@@ -1,7 +1,7 @@
 // The diagnosis of a diverged run (divergence.hpp): a replay with the same code that watches the
 // laws the forces must keep, then the step limit of the method.
 #include "springlab/divergence.hpp"
-#include "numbers.hpp"
+#include "support/numbers.hpp"
 
 #include "springlab/cli_values.hpp"
 #include "springlab/diagnostics.hpp"

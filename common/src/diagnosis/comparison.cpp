@@ -1,5 +1,5 @@
 #include "springlab/comparison.hpp"
-#include "numbers.hpp"
+#include "support/numbers.hpp"
 
 #include "springlab/errors.hpp"
 #include "springlab/simulation.hpp"

@@ -1,6 +1,6 @@
 #include "springlab/integrator.hpp"
 
-#include "integrators.hpp"
+#include "integrators/integrators.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/verlet_support.hpp"
 

@@ -1,5 +1,5 @@
 // The kit's explicit one-step methods: symplectic Euler and classical RK4 (see integrator.hpp).
-#include "integrators.hpp"
+#include "integrators/integrators.hpp"
 #include "springlab/parallel.hpp"
 
 namespace springlab::detail {

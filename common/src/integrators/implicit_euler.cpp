@@ -23,8 +23,8 @@
 //   any thread count.
 // - Pinned particles have no unknowns: their Δv is held at zero in every CG vector (A x is
 //   zeroed there, and so is the preconditioner), so they stay exactly where they are.
-#include "integrators.hpp"
-#include "spring_matrices.hpp"
+#include "integrators/integrators.hpp"
+#include "integrators/spring_matrices.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/memory_budget.hpp"
 #include "springlab/parallel.hpp"

@@ -18,8 +18,8 @@
 // v_{n+1}) = a(r_{n+1}, v*) − M⁻¹Cδ is then known without another evaluation and starts the next
 // step: one evaluation a step. Forces with a velocity dependence of their own (not the dampers) are
 // taken at v*, an O(h²) change of a: the order stays 2.
-#include "integrators.hpp"
-#include "spring_matrices.hpp"
+#include "integrators/integrators.hpp"
+#include "integrators/spring_matrices.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/parallel.hpp"
 
