@@ -1,6 +1,6 @@
-// XPBD as an integrator of the kit (common/src/integrators/xpbd.cpp, handout/integrators.md "XPBD"): one
-// substep is backward Euler along and across a spring, it converges to the reference as the
-// substeps grow with order 1, the springs keep the momentum, a mirror-symmetric start stays
+// XPBD as an integrator of the kit (common/src/integrators/xpbd.cpp, handout/integrators.md
+// "XPBD"): one substep is backward Euler along and across a spring, it converges to the reference
+// as the substeps grow with order 1, the springs keep the momentum, a mirror-symmetric start stays
 // symmetric up to the Gauss–Seidel order's own error, and a rigid limit stays finite. Expected
 // values come from the equations and from reference runs; the work is counted, never timed.
 #include "lab_testing.hpp"

@@ -1,11 +1,11 @@
 // The step limits of all six integrators (stability.hpp): step matrices of the linear model,
 // bisection on their spectral radius, the per-mode formulas and the report of the runner.
-#include "support/numbers.hpp"
 #include "springlab/eigen_solvers.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/integrator.hpp"
 #include "springlab/scene.hpp"
 #include "springlab/stability.hpp"
+#include "support/numbers.hpp"
 
 #include <Eigen/LU>
 
