@@ -7,7 +7,7 @@ status=0
 for name in grid_forces wind_velocities xpbd; do
   object=
   for candidate in "$@"; do
-    case "$candidate" in */src/$name.cpp.o) object=$candidate ;; esac
+    case "$candidate" in */src/$name.cpp.o | */src/*/$name.cpp.o) object=$candidate ;; esac
   done
   [ -n "$object" ] || { echo "no object for $name.cpp among the libraries'"; status=1; continue; }
   count=$(objdump -d --no-show-raw-insn "$object" | grep -c 'ymm' || true)
