@@ -37,6 +37,12 @@ enum class BrokenLaw {
 };
 
 /// The diagnosis of a divergence: which law broke, when, by how much, where to look, in words.
+/// Whether the code under test's forces, measured about the scene at rest, are those of (1.1) and
+/// (1.2) there (so the formula's step limit is the run's): not checked for the kit's own model or a
+/// scene beyond the exact budget; not measured when the code threw or gave no finite value; grow:
+/// they differ, and make some motion grow in exact time (no step is stable or to blame).
+enum class ForcesAtRest { not_checked, as_formulas, differ, grow, not_measured };
+
 struct Diagnosis {
   BrokenLaw law = BrokenLaw::none;
   double time = std::numeric_limits<double>::quiet_NaN();  ///< s, when the law first broke
@@ -46,7 +52,11 @@ struct Diagnosis {
   std::string equation;   ///< the handout's equation to check, e.g. "(2.4)"; empty if none
   std::string words;      ///< plain sentences for the student
   double step = 0.0;      ///< h, s
-  CriticalStep critical;  ///< h_c of the run's method on this scene (not_computed if unknown)
+  CriticalStep critical;  ///< h_c of the run's method on this scene (not_computed if unknown),
+                          ///< of the forces that ran (see forces_at_rest)
+  ForcesAtRest forces_at_rest = ForcesAtRest::not_checked;
+  CriticalStep formula_critical;  ///< h_c of (1.1) and (1.2)'s forces, when those differ
+  double own_growth_rate = 0.0;   ///< 1/s: the largest Re λ of the measured model, when it grows
   double growth = std::numeric_limits<double>::quiet_NaN();  ///< per step at h, if computed
   double replayed = 0.0;                                     ///< s of the run the replay watched
   bool replayed_all = false;

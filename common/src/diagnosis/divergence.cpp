@@ -1,6 +1,7 @@
 // The diagnosis of a diverged run (divergence.hpp): a replay with the same code that watches the
 // laws the forces must keep, then the step limit of the method.
 #include "springlab/divergence.hpp"
+#include "diagnosis/measured_model.hpp"
 #include "support/numbers.hpp"
 
 #include "springlab/cli_values.hpp"
@@ -14,6 +15,7 @@
 #include <cctype>
 #include <climits>
 #include <cmath>
+#include <complex>
 #include <iomanip>
 #include <optional>
 #include <sstream>
@@ -36,6 +38,8 @@ struct ReplayAccess {
 namespace {
 
 using internal::infinity;
+using internal::measured_model;
+using internal::model_gap;
 using internal::significant;
 constexpr double not_a_number = std::numeric_limits<double>::quiet_NaN();
 
@@ -335,6 +339,20 @@ std::string drag_words(const Scene& scene, const CriticalStep& c) {
   return out.str();
 }
 
+// Whose forces a step limit is of: the scene's, or the code's own where they differ from the
+// formulas about rest (limit_of_forces_that_ran).
+std::string whose_forces(const Diagnosis& d) {
+  if (d.forces_at_rest != ForcesAtRest::differ) return " on this scene";
+  std::ostringstream out;
+  out << " for this code's forces, measured about the scene at rest, where they are not those of "
+         "(1.1) and (1.2) (with those it would be ";
+  if (d.formula_critical.source == LimitSource::no_limit || std::isinf(d.formula_critical.step))
+    out << "no limit)";
+  else
+    out << number_apart(d.formula_critical.step, d.critical.step, 3) << " s)";
+  return out.str();
+}
+
 // "h = 0.01 s is 2 times the critical step 0.005 s of explicit Euler on this scene" and the like.
 std::string step_comparison(const Diagnosis& d, const Scene& scene) {
   const std::string_view integrator = scene.parameters.integrator;
@@ -343,6 +361,26 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
   const CriticalStep& c = d.critical;
   std::ostringstream out;
   out << "h = " << d.step << " s";
+  const auto formula_limit = [&] {
+    const CriticalStep& f = d.formula_critical;
+    return f.source == LimitSource::no_limit || std::isinf(f.step)
+               ? "no critical step"
+               : "a critical step of " + significant(f.step) + " s";
+  };
+  if (d.forces_at_rest == ForcesAtRest::grow) {
+    std::ostringstream grows;  // no "h = ..." first: h is not what this is about
+    grows << "this code's forces, measured about the scene at rest, make some motion grow as "
+             "e^(s t) with s = "
+          << significant(d.own_growth_rate) << " 1/s in exact time, at any h (here " << d.step
+          << " s); with (1.1) and (1.2)'s forces " << method << " would have " << formula_limit();
+    return grows.str();
+  }
+  if (d.forces_at_rest == ForcesAtRest::differ && c.source == LimitSource::not_computed) {
+    out << ": (1.1) and (1.2)'s forces would have " << formula_limit() << " with " << method
+        << ", which does not hold for this code: its forces, measured about the scene at rest, "
+           "are not theirs";
+    return out.str();
+  }
   if (c.source == LimitSource::not_computed) {
     out << ": the critical step of " << method << " is not computed for a scene of " << particles
         << " particles (springlab-run --stability computes it up to " << exact_particles_max << ")";
@@ -360,8 +398,8 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
     return out.str();
   }
   if (c.step == 0.0) {
-    out << " is beyond every step " << method
-        << " can take on this scene: some motion of it has no damping, and " << method
+    out << " is beyond every step " << method << " can take" << whose_forces(d)
+        << ": some motion of it has no damping, and " << method
         << " makes an undamped motion grow at every h";
   } else {
     const std::string estimate = c.source == LimitSource::modal_estimate ? "an estimate of "
@@ -369,11 +407,11 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
                                                                          : "";
     if (d.step > c.step)
       out << " is " << number_apart(d.step / c.step, 1.0, 3) << " times " << estimate
-          << "the critical step " << number_apart(c.step, d.step, 3) << " s of " << method
-          << " on this scene";
+          << "the critical step " << number_apart(c.step, d.step, 3) << " s of " << method;
     else
       out << " is below " << estimate << "the critical step " << number_apart(c.step, d.step, 3)
-          << " s of " << method << " on this scene";
+          << " s of " << method;
+    out << whose_forces(d);
   }
   // (A growth of 1 or less says nothing of this divergence: Verlet's iteration, whose own limit
   // the step matrix does not see, can be what failed.)
@@ -382,6 +420,68 @@ std::string step_comparison(const Diagnosis& d, const Scene& scene) {
         << ")";
   out << drag_words(scene, c);
   return out.str();
+}
+
+// The exact critical step of p's integrator for a linear model (the wind's drag added here), and
+// in `growth` the growth per step at p's h when beyond it.
+CriticalStep model_critical_step(LinearModel model, const SceneParameters& p, double* growth) {
+  if (p.wind.enabled) add_drag(model, p.wind.drag);
+  if (p.integrator == "explicit-euler" || p.integrator == "rk4") {  // one eigen-solve for both
+    const auto lambda = deforming_eigenvalues(model);
+    const double critical = polynomial_critical_step(lambda, p.integrator);
+    if (growth && p.step > critical)
+      *growth = polynomial_growth_factor(lambda, p.integrator, p.step);
+    return {critical, LimitSource::exact_formula};
+  }
+  const CriticalStep critical = critical_step_of(model, p.integrator, p.xpbd.substeps);
+  if (growth && p.step > critical.step && p.integrator != "implicit-euler" &&
+      p.integrator != "xpbd")
+    *growth = step_growth_factor(model, p.integrator, p.step);
+  return critical;
+}
+
+// The step limit said of a run is the one of the forces that ran (issue 39). Where the code under
+// test's forces, measured about rest, are not those of (1.1) and (1.2) there, d keeps the formula's
+// limit beside and says of the run only what the measured model shows: motion that grows in exact
+// time (no step is the cause), or for explicit Euler and RK4 the limit from the measured model's
+// eigenvalues (which need no symmetry of K); the other methods' formulas assume forces that
+// conserve momentum and energy, so for them no limit is claimed.
+void limit_of_forces_that_ran(Diagnosis& d, const Scene& start, const Implementation& impl,
+                              const DiagnosisBudget& budget) {
+  const Particles& particles = start.particles;
+  if (is_kit_model(impl) || particles.size() > budget.exact_particles ||
+      d.critical.source == LimitSource::no_limit)
+    return;
+  const Vectors rest = rest_positions(start);
+  const std::optional<LinearModel> own = measured_model(start, impl, rest);
+  if (!own) {
+    d.forces_at_rest = ForcesAtRest::not_measured;
+    return;
+  }
+  // Differences of 1e-6 of a spring's length leave about 1e-9 of rounding in K: 1e-6 is far
+  // above it and far below any mistake in a formula.
+  if (model_gap(*own, linearise(start.springs, rest, particles.mass, particles.pinned)) <= 1e-6) {
+    d.forces_at_rest = ForcesAtRest::as_formulas;
+    return;
+  }
+  d.formula_critical = d.critical;
+  d.growth = not_a_number;
+  // The rigid motions (lambda = 0, which the differences blur to about 1e-7 1/s) left out; a
+  // deforming mode grows when Re(lambda) is above the differences' relative error, 1e-6 of it.
+  double rate = 0.0;
+  for (const std::complex<double>& l : deforming_eigenvalues(*own))
+    if (l.real() > 1e-6 * std::abs(l)) rate = std::max(rate, l.real());
+  if (rate > 0.0) {  // grows without any integrator: e^{rate t}
+    d.forces_at_rest = ForcesAtRest::grow;
+    d.own_growth_rate = rate;
+    d.critical = {not_a_number, LimitSource::not_computed};
+    return;
+  }
+  d.forces_at_rest = ForcesAtRest::differ;
+  const std::string_view method = start.parameters.integrator;
+  d.critical = method == "explicit-euler" || method == "rk4"
+                   ? model_critical_step(*own, start.parameters, &d.growth)
+                   : CriticalStep{not_a_number, LimitSource::not_computed};
 }
 
 bool beyond_critical(const Diagnosis& d) {
@@ -398,22 +498,9 @@ CriticalStep scene_critical_step(const Scene& scene, const DiagnosisBudget& budg
   const auto free = std::count(particles.pinned.begin(), particles.pinned.end(), false);
   if (free == 0) return {infinity, LimitSource::no_limit};
   const Vectors rest = rest_positions(scene);
-  if (particles.size() <= budget.exact_particles) {  // as stability_report decides
-    LinearModel model = linearise(scene.springs, rest, particles.mass, particles.pinned);
-    if (p.wind.enabled) add_drag(model, p.wind.drag);
-    if (p.integrator == "explicit-euler" || p.integrator == "rk4") {  // one eigen-solve for both
-      const auto lambda = deforming_eigenvalues(model);
-      const double critical = polynomial_critical_step(lambda, p.integrator);
-      if (growth && p.step > critical)
-        *growth = polynomial_growth_factor(lambda, p.integrator, p.step);
-      return {critical, LimitSource::exact_formula};
-    }
-    const CriticalStep critical = critical_step_of(model, p.integrator, p.xpbd.substeps);
-    if (growth && p.step > critical.step && p.integrator != "implicit-euler" &&
-        p.integrator != "xpbd")
-      *growth = step_growth_factor(model, p.integrator, p.step);
-    return critical;
-  }
+  if (particles.size() <= budget.exact_particles)  // as stability_report decides
+    return model_critical_step(linearise(scene.springs, rest, particles.mass, particles.pinned), p,
+                               growth);
   const double w = highest_frequency_bound(scene.springs, rest, particles.mass, particles.pinned);
   double c = damping_rate_bound(scene.springs, particles.mass, particles.pinned);
   const double drag_rate = p.wind.enabled ? p.wind.drag / particles.mass.minCoeff() : 0.0;
@@ -436,6 +523,7 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
   Diagnosis d;
   d.step = p.step;
   d.critical = scene_critical_step(start, budget, &d.growth);
+  limit_of_forces_that_ran(d, start, impl, budget);
 
   // What the replay watches.
   const bool pinned =
@@ -589,7 +677,10 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
   const auto about_h = [&] {
     if (beyond_critical(d))
       return " Besides, " + step_words + ": fix the forces first, then make h smaller.";
-    if (d.critical.source == LimitSource::not_computed) return std::string();
+    if (d.forces_at_rest == ForcesAtRest::grow)
+      return " The step is not the cause: " + step_words + ".";
+    if (d.critical.source == LimitSource::not_computed)
+      return d.forces_at_rest == ForcesAtRest::differ ? " (" + step_words + ".)" : std::string();
     return " The step is not the cause: " + step_words + ".";
   };
 
@@ -748,6 +839,11 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     d.law = BrokenLaw::none;
     words << "Why: not replayed, the scene's " << n << " particles are more than the "
           << budget.particles << " the diagnosis replays; " << step_words << ".";
+  } else if (d.forces_at_rest == ForcesAtRest::grow) {
+    d.law = BrokenLaw::none;
+    words << "Why: " << kept_words << "; " << step_words
+          << ". Look at the spring and damper forces, (1.1) and (1.2), and how (2.3) adds them: "
+             "forces that only store or remove energy make no motion grow.";
   } else if (d.critical.source == LimitSource::not_computed) {
     d.law = BrokenLaw::none;
     words << "Why: " << kept_words << "; " << step_words
