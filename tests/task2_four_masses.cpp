@@ -186,21 +186,32 @@ TEST_CASE("Damper forces: minus the gradient of the dissipation, so they never a
   double power = 0.0;
   for (int i = 0; i < r.cols(); ++i)
     power += f.col(i).dot(v.col(i));
+  // Per particle: F_i = -sum over its springs of b (v_i - v_j), from dR/dv_i.
+  Vectors expected = Vectors::Zero(2, r.cols());
+  for (const Spring& s : scene.springs) {
+    expected.col(s.p) -= s.b * (v.col(s.p) - v.col(s.q));
+    expected.col(s.q) -= s.b * (v.col(s.q) - v.col(s.p));
+  }
   INFO("compared: the dampers' power sum F_i . v_i, W: -2R");
-  const std::string known = recognise(
-      power, usual_suspects(-2.0 * dissipation, "the dampers' power"), 1e-9 * dissipation);
+  // A shape is named only when it is every particle's damper force, not the power alone.
+  std::vector<Suspect<Vectors>> shapes;
+  for (const auto& [words, factor] :
+       {std::pair{"the dampers' power has the opposite sign: the damper forces of (1.2) point "
+                  "the wrong way",
+                  -1.0},
+        std::pair{"the dampers' power is zero: the term is missing", 0.0},
+        std::pair{"the dampers' power is twice what it should be: each damper counted twice, or "
+                  "2b",
+                  2.0},
+        std::pair{"the dampers' power is half what it should be: a factor 2 missing", 0.5}})
+    shapes.push_back({words, Vectors(factor * expected)});
+  const std::string known = recognise(f, shapes, 1e-9 * (1.0 + expected.norm()));
   INFO((known.empty() && std::abs(power + 2.0 * dissipation) > 1e-12 * dissipation
             ? probe_force_sum(force_sum_of(implementation()), spring_force_of(implementation()),
                               damper_force_of(implementation()))
             : known));
   CHECK(power <= 0.0);
   CHECK_THAT(power, WithinRel(-2.0 * dissipation, 1e-12));
-  // And per particle: F_i = -sum over its springs of b (v_i - v_j), from dR/dv_i.
-  Vectors expected = Vectors::Zero(2, r.cols());
-  for (const Spring& s : scene.springs) {
-    expected.col(s.p) -= s.b * (v.col(s.p) - v.col(s.q));
-    expected.col(s.q) -= s.b * (v.col(s.q) - v.col(s.p));
-  }
   for (int i = 0; i < r.cols(); ++i) {
     CAPTURE(i);
     CHECK_THAT(Vec2(f.col(i)), IsNear(expected.col(i), 1e-12));

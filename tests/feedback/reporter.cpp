@@ -1,12 +1,14 @@
 // The harness's Catch2 reporter: remembers, for the one test case run, its assertion counts and
 // its first failure in a teacher's words: what was checked (the test's INFO, with its equation),
 // what is compared (an INFO "compared: ..."), what the code gave and what was expected, the
-// mistake a test recognised ("likely mistake: ..."), and the values the test varied (CAPTURE).
+// mistake a test recognised ("likely mistake: ...") or what it measured ("measured: ..."), the
+// values the test varied (CAPTURE).
 // Catch2's own form (the test's file, line and expression) follows on lines marked "raw: ", which
 // the grader shows only to whoever asks (springlab-grade --raw). It writes nothing: main.cpp sends
 // the outcome to the grader as a record.
 #include "reporter.hpp"
 #include "catch_internals.hpp"
+#include "exception_names.hpp"
 
 #include <algorithm>
 #include <array>
@@ -21,6 +23,22 @@ TestOutcome& test_outcome() {
 namespace {
 
 constexpr std::string_view mistake_prefix = "likely mistake: ";
+// What a probe measured when no concrete mistake reproduces it: facts, no cause.
+constexpr std::string_view measured_prefix = "measured: ";
+
+// An exception that escaped a check, as Catch2 shows it: its type (the kit's or the standard
+// library's) and its message, so that a failure can say which type was thrown. A task not written
+// yet keeps its message alone.
+CATCH_TRANSLATE_EXCEPTION(const std::exception& error) {
+  if (testing::is_a<NotImplemented>(error)) return error.what();
+  return testing::exception_type(error) + ": " + error.what();
+}
+
+// The type a THROWS_AS check names, from its expression "call(), Type".
+std::string expected_type(const Catch::AssertionResult& result) {
+  const std::string expression = result.getExpression();
+  return expression.substr(expression.rfind(", ") + 2);
+}
 
 // Got and expected from Catch2's expansion of a comparison ("28 == 4000", or one operand per
 // line when long) or of a matcher ("(0.095, 0.48) is within 1e-14 of (0.1, 0.5)"). Empty when
@@ -89,8 +107,9 @@ Context context_of(const Catch::AssertionStats& stats) {
       c.values += (c.values.empty() ? "" : ", ") + value;
     } else if (m.message.rfind("compared: ", 0) == 0) {
       c.compared = m.message;  // the innermost: what the failed check compares
-    } else if (m.message.rfind(mistake_prefix, 0) == 0) {
-      if (c.mistake.empty()) c.mistake = m.message;
+    } else if (m.message.rfind(mistake_prefix, 0) == 0 ||
+               m.message.rfind(measured_prefix, 0) == 0) {
+      if (c.mistake.empty()) c.mistake = m.message;  // a mistake named, or what was measured
     } else {
       c.checked += (c.checked.empty() ? "" : "\n") + m.message;
     }
@@ -112,19 +131,17 @@ std::string explain(const Catch::AssertionStats& stats) {
     if (what.find("is not implemented yet") != std::string::npos) return what;
     add("checked: ", c.checked);
     if (macro.find("THROWS_AS") != std::string::npos) {
-      const std::string expression = result.getExpression();
-      const std::string type = expression.substr(expression.rfind(", ") + 2);
-      add("expected: ", "the exception " + type);
-      add("got: ", "another kind of exception: " + what);
+      add("got:      ", "the exception " + what);
+      add("expected: ", "the exception " + expected_type(result) + ", not another type");
     } else {
-      add("got: ", "an exception the test did not expect: " + what);
+      add("got:      ", "the exception " + what);
+      add("expected: ", "no exception: the check needs this call to return");
     }
   } else if (result.getResultType() == Catch::ResultWas::DidntThrowException) {
     add("checked: ", c.checked);
     add("got: ", "no exception");
-    const std::string expression = result.getExpression();
     add("expected: ", macro.find("THROWS_AS") != std::string::npos
-                          ? "the exception " + expression.substr(expression.rfind(", ") + 2)
+                          ? "the exception " + expected_type(result)
                           : "an exception");
   } else if (result.getResultType() == Catch::ResultWas::ExplicitFailure) {
     add("checked: ", c.checked);
@@ -136,8 +153,10 @@ std::string explain(const Catch::AssertionStats& stats) {
     if (!values.got.empty()) {
       add("got:      ", values.got);
       add("expected: ", values.expected);
-    } else if (c.mistake.empty()) {
-      add("got: ", "something else than the check asks for");
+    } else if (c.mistake.empty() && c.compared.empty() &&
+               c.checked.find('\n') == std::string::npos) {
+      // A condition with no values to show and no words of the test's own on this failure.
+      add("got: ", "false, where the check needs " + std::string(result.getExpression()));
     }
   }
   add("", c.mistake);

@@ -1,4 +1,5 @@
 #include "probes.hpp"
+#include "exception_names.hpp"
 #include "least_squares.hpp"
 
 #include "springlab/parameters.hpp"
@@ -25,7 +26,23 @@ std::string likely_mistake(const std::vector<std::string>& said) {
   return text;
 }
 
+// "measured: A; B": what was measured when no concrete mistake reproduces it, or "".
+std::string measured(const std::vector<std::string>& said) {
+  if (said.empty()) return "";
+  std::string text = "measured: ";
+  for (std::size_t i = 0; i < said.size(); ++i)
+    text += (i == 0 ? "" : "; ") + said[i];
+  return text;
+}
+
 constexpr double close = 1e-7;  // relative agreement that counts as exact after a fit
+
+// A fitted coefficient that can name a mistake: a small whole number or half of one (0, ±1/2,
+// ±1, ±3/2, ±2, ...), to the fit's rounding. Any other value (0.9524, 1.003, 3e-8) is a
+// measurement: it says how far the code is off, not which formula it uses.
+bool simple(double c) {
+  return std::abs(c) <= 4.0 && std::abs(2.0 * c - std::round(2.0 * c)) <= close * (1 + std::abs(c));
+}
 
 std::string number(double x) {
   if (std::abs(x - std::round(x)) < 1e-9) return std::to_string(long(std::round(x)));
@@ -129,9 +146,93 @@ std::optional<Law> law_in_length(const std::vector<double>& lengths,
   return c;
 }
 
-}  // namespace
+// Concrete wrong versions of (1.1), each evaluated on every probe before it is named.
+struct SpringMistake {
+  std::string words;
+  std::function<Vec2(const Vec2& d, double k, double rest)> force;  // d = r_p - r_q
+};
 
-std::string probe_spring_force(const SpringForce& f) {
+const std::vector<SpringMistake>& spring_mistakes() {
+  using V = const Vec2&;
+  static const std::vector<SpringMistake> all = {
+      {"the spring force (1.1) has the opposite sign",
+       [](V d, double k, double l0) { return Vec2(k * (d.norm() - l0) * d / d.norm()); }},
+      {"the force uses the length |r_p - r_q| where (1.1) has the stretch |r_p - r_q| - l0",
+       [](V d, double k, double) { return Vec2(-k * d); }},
+      {"the direction r_p - r_q is not divided by its length |r_p - r_q| (1.1 needs a unit "
+       "vector)",
+       [](V d, double k, double l0) { return Vec2(-k * (d.norm() - l0) * d); }},
+      {"the force is divided by the rest length l0: (1.1) is k (L - l0), not k (L - l0) / l0",
+       [](V d, double k, double l0) { return Vec2(-k * (d.norm() - l0) / l0 * d / d.norm()); }},
+      {"the force is multiplied by the rest length l0: (1.1) is k (L - l0)",
+       [](V d, double k, double l0) { return Vec2(-k * (d.norm() - l0) * l0 * d / d.norm()); }},
+      {"the stretch is taken in absolute value, k |L - l0|: stretched springs are right, but a "
+       "compressed one (L < l0) pulls where (1.1) pushes; keep the sign of L - l0",
+       [](V d, double k, double l0) { return Vec2(-k * std::abs(d.norm() - l0) * d / d.norm()); }},
+      {"the length is measured after the direction was normalised, so L is always 1: the force "
+       "is k (1 - l0) whatever the length; take |r_p - r_q| before normalising",
+       [](V d, double k, double l0) { return Vec2(-k * (1.0 - l0) * d / d.norm()); }},
+      {"the length is |r_p - r_q|^2 (squaredNorm) where (1.1) has |r_p - r_q| (norm)",
+       [](V d, double k, double l0) {
+         return Vec2(-k * (d.squaredNorm() - l0) * d / d.squaredNorm());
+       }},
+      {"the length |r_p - r_q| is rounded to a float (about 7 digits): keep it a double",
+       [](V d, double k, double l0) {
+         const double length = double(float(d.norm()));
+         return Vec2(-k * (length - l0) * d / length);
+       }},
+      {"the spring force (1.1) is twice as large as it should be",
+       [](V d, double k, double l0) { return Vec2(-2 * k * (d.norm() - l0) * d / d.norm()); }},
+      {"the spring force (1.1) is half as large as it should be",
+       [](V d, double k, double l0) { return Vec2(-0.5 * k * (d.norm() - l0) * d / d.norm()); }},
+      {"the spring force (1.1) is zero: the term is missing",
+       [](V, double, double) { return Vec2(Vec2::Zero()); }},
+  };
+  return all;
+}
+
+// The first concrete mistake that gives f's force, to rounding, on every spring tried: lengths
+// stretched and compressed, several rest lengths, stiffnesses and directions; "" when none does.
+std::string spring_mistake_everywhere(const SpringForce& f) {
+  const Vec2 r_q(0.4, -0.7);
+  std::vector<std::pair<Vec2, std::pair<double, double>>> probes;  // d, (k, l0)
+  for (const double degrees : {0.0, 37.0, 200.0, -135.0})
+    for (const double rest : {1.0, std::numbers::sqrt2, 0.5, 2.0})
+      for (const double ratio : {0.3, 0.6, 1.3, 2.5})
+        for (const double k : {20.0, 7.5})
+          probes.push_back({ratio * rest * unit(degrees), {k, rest}});
+  std::vector<Vec2> got;
+  for (const auto& [d, values] : probes)
+    got.push_back(f(r_q + d, r_q, values.first, values.second));
+  for (const SpringMistake& m : spring_mistakes()) {
+    bool everywhere = true;
+    for (std::size_t i = 0; i < probes.size() && everywhere; ++i) {
+      const auto& [d, values] = probes[i];
+      const Vec2 wrong = m.force(d, values.first, values.second);
+      everywhere =
+          got[i].allFinite() && (got[i] - wrong).norm() <= 1e-12 * values.first * (1.0 + d.norm());
+    }
+    if (everywhere) return "likely mistake: " + m.words;
+  }
+  return "";
+}
+
+// What f gives along the spring against (1.1) on a compressed and a stretched spring, in numbers.
+std::string along_examples(const std::function<double(double k, double l0, double L)>& along) {
+  std::ostringstream out;
+  out << "along the spring, towards q, the force is";
+  bool first = true;
+  for (const auto& [l0, length] : {std::pair{1.0, 0.6}, std::pair{1.0, 1.3}, std::pair{2.0, 2.6}}) {
+    out << (first ? " " : ", ") << std::setprecision(10) << along(20.0, l0, length)
+        << " N at L = " << length << " m, l0 = " << l0 << " m";
+    first = false;
+  }
+  out << " (k = 20 N/m), where (1.1), k (L - l0), gives " << 20.0 * (0.6 - 1.0) << ", "
+      << 20.0 * (1.3 - 1.0) << " and " << 20.0 * (2.6 - 2.0) << " N";
+  return out.str();
+}
+
+std::string spring_force_findings(const SpringForce& f) {
   const double k = 20.0, rest = 1.0;
   const Vec2 r_q(0.4, -0.7);
   // Across the spring: the force must lie along r_q - r_p.
@@ -154,11 +255,12 @@ std::string probe_spring_force(const SpringForce& f) {
            "0.6 and 2.5 l0: a division by zero or a square root of a negative number?";
   if (worst_across > 1e-9 * k) {
     std::ostringstream out;
-    out << "likely mistake: the force is not along the spring: it makes an angle of up to "
+    out << "measured: the force is not along the spring: it makes an angle of up to "
         << number(std::abs(angle)) << " degrees with r_q - r_p on the springs tried, and (1.1) "
         << "is along r_p - r_q (look at which components, and which ends, the direction uses)";
     return out.str();
   }
+  if (const std::string named = spring_mistake_everywhere(f); !named.empty()) return named;
   // Along the spring, towards q: (1.1) gives k (L - l0). As a law in L, l0 and k.
   const auto along = [&](double stiffness, double rest_length, double length) {
     const Vec2 towards_q = -unit(37.0);
@@ -179,17 +281,21 @@ std::string probe_spring_force(const SpringForce& f) {
   const double per = proportional ? k : 1.0;  // the law is said per k when it is k times one
   const auto at_1 = fit(k, 1.0, per), at_2 = fit(k, 2.0, per);
   if (!at_1 || !at_2)
-    return "likely mistake: along the spring the force is no law of the form a L^3 + b L^2 + c L "
-           "+ d + e/L in the length L: (1.1) is k (L - l0)";
+    return "measured: " + along_examples(along) +
+           "; no law a L^3 + b L^2 + c L + d + e/L fits it on the lengths tried";
   // Each coefficient as κ l0^m, from l0 = 1 and l0 = 2.
   std::vector<Term> terms;
+  bool exact = true;
   for (int i = 0; i < length_terms; ++i) {
     const auto m = power_of((*at_1)[i], (*at_2)[i]);
-    if (!m) return "likely mistake: along the spring the force is not k (L - l0) (1.1)";
+    if (!m) return "measured: " + along_examples(along);
+    exact = exact && simple((*at_1)[i]);
     terms.push_back({(*at_1)[i], length_powers[i], *m});
   }
   const std::string law = formula(terms);
   if (law == "L - l0" && proportional) return "";
+  // A law with coefficients such as 3e-8 or 0.95 is a measurement, not a formula someone wrote.
+  if (!exact) return "measured: " + along_examples(along);
   std::ostringstream out;
   out << "likely mistake: along the spring, towards q, the force is ";
   if (proportional)
@@ -209,7 +315,7 @@ std::string probe_spring_force(const SpringForce& f) {
   return out.str();
 }
 
-std::string probe_damper_force(const DamperForce& f) {
+std::string damper_force_findings(const DamperForce& f) {
   // The map v_p, v_q -> F, column by column, at b and at 2b.
   const auto map = [&](double b) {
     Eigen::Matrix<double, 2, 4> m;
@@ -286,11 +392,168 @@ std::string probe_damper_force(const DamperForce& f) {
     out << ": it ignores v_q";
   else if (std::abs(*on_p) < 1e-12)
     out << ": it ignores v_p";
-  return out.str();
+  // Multiples such as 0.95 b are measured, not a formula's: said as measurements.
+  std::string text = out.str();
+  if ((!simple(*on_p) || !simple(*on_q) || b_power < 0.0) && text.rfind("likely mistake: ", 0) == 0)
+    text.replace(0, 16, "measured: ");
+  return text;
 }
 
-std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
-                            const DamperForce& damper) {
+// Concrete wrong versions of (2.3)-(2.4), each run on every probe before it is named. `spring`
+// and `damper` are task 1's functions, so that a mistake of task 1 does not show here.
+struct SumMistake {
+  std::string words;
+  ForceSum sum;
+};
+
+std::vector<SumMistake> sum_mistakes(const SpringForce& spring, const DamperForce& damper) {
+  using Springs = const std::vector<Spring>&;
+  using In = const Vectors&;
+  // Each spring's forces on p and q, as a mistake computes them, added (or set) per spring.
+  using Pair = std::pair<Vec2, Vec2>;
+  using PerSpring = std::function<Pair(const Spring&, In r, In v)>;
+  const auto right = [=](const Spring& s, In r, In v) {
+    return Vec2(spring(r.col(s.p), r.col(s.q), s.k, s.rest_length) +
+                damper(v.col(s.p), v.col(s.q), s.b));
+  };
+  const auto each = [](PerSpring per, std::size_t skip_first, std::size_t skip_last, bool clear,
+                       bool assign) {
+    return [=](Springs springs, In r, In v, Vectors& force) {
+      if (clear) force.setZero();
+      for (std::size_t i = skip_first; i + skip_last < springs.size(); ++i) {
+        const auto [to_p, to_q] = per(springs[i], r, v);
+        const Spring& s = springs[i];
+        if (assign) {
+          force.col(s.p) = to_p;
+          force.col(s.q) = to_q;
+        } else {
+          force.col(s.p) += to_p;
+          force.col(s.q) += to_q;
+        }
+      }
+    };
+  };
+  const auto ends = [](std::function<Vec2(const Spring&, In, In)> f_pq, double p, double q) {
+    return [=](const Spring& s, In r, In v) { return Pair(p * f_pq(s, r, v), q * f_pq(s, r, v)); };
+  };
+  const auto with = [=](std::function<Vec2(const Spring&, In, In)> f_pq) {
+    return ends(f_pq, 1.0, -1.0);
+  };
+  const PerSpring newton = with(right);
+  return {
+      {"the forces passed in are lost: `force` was cleared (set to zero) first, where (2.4) adds "
+       "to what is already there",
+       each(newton, 0, 0, true, false)},
+      {"the forces passed in are lost: each end's force is set (=) to its spring's, where (2.4) "
+       "adds (+=) to what is already there",
+       each(newton, 0, 0, false, true)},
+      {"only one end of each spring gets its force: (2.4) adds F_pq to p and -F_pq to q",
+       each(ends(right, 1.0, 0.0), 0, 0, false, false)},
+      {"only one end of each spring gets its force: (2.4) adds F_pq to p and -F_pq to q",
+       each(ends(right, 0.0, -1.0), 0, 0, false, false)},
+      {"F_pq is added to both ends with the same sign: (2.4) gives q the opposite force, "
+       "F_qp = -F_pq",
+       each(ends(right, 1.0, 1.0), 0, 0, false, false)},
+      {"the forces have the opposite sign: p gets -F_pq and q gets F_pq, where (2.4) adds F_pq "
+       "to p",
+       each(ends(right, -1.0, 1.0), 0, 0, false, false)},
+      {"the damper's force (1.2) is left out: (2.3) adds it to the spring's",
+       each(with([=](const Spring& s, In r, In) {
+              return spring(r.col(s.p), r.col(s.q), s.k, s.rest_length);
+            }),
+            0, 0, false, false)},
+      {"the damper's force (1.2) has the opposite sign (its velocities swapped?): (2.3) adds "
+       "damper_force(v_p, v_q, b)",
+       each(with([=](const Spring& s, In r, In v) {
+              return Vec2(spring(r.col(s.p), r.col(s.q), s.k, s.rest_length) +
+                          damper(v.col(s.q), v.col(s.p), s.b));
+            }),
+            0, 0, false, false)},
+      {"the damper is given the positions r_p, r_q where (2.3) gives it the velocities v_p, v_q",
+       each(with([=](const Spring& s, In r, In) {
+              return Vec2(spring(r.col(s.p), r.col(s.q), s.k, s.rest_length) +
+                          damper(r.col(s.p), r.col(s.q), s.b));
+            }),
+            0, 0, false, false)},
+      {"the damper gets the spring's k where (2.3) has b",
+       each(with([=](const Spring& s, In r, In v) {
+              return Vec2(spring(r.col(s.p), r.col(s.q), s.k, s.rest_length) +
+                          damper(v.col(s.p), v.col(s.q), s.k));
+            }),
+            0, 0, false, false)},
+      {"the spring's force (1.1) is left out: (2.3) adds the spring's and the damper's",
+       each(with([=](const Spring& s, In, In v) { return damper(v.col(s.p), v.col(s.q), s.b); }), 0,
+            0, false, false)},
+      {"every spring has the rest length 1 m: use each spring's own rest length (2.3)",
+       each(with([=](const Spring& s, In r, In v) {
+              return Vec2(spring(r.col(s.p), r.col(s.q), s.k, 1.0) +
+                          damper(v.col(s.p), v.col(s.q), s.b));
+            }),
+            0, 0, false, false)},
+      {"the first spring of the list (springs[0]) gives no force, the others theirs: the loop "
+       "starts at 1, where (2.3) sums over every spring",
+       each(newton, 1, 0, false, false)},
+      {"the last spring of the list gives no force, the others theirs: the loop stops one spring "
+       "short",
+       each(newton, 0, 1, false, false)},
+  };
+}
+
+// The first concrete mistake that gives f's forces, to rounding, on every probe: single springs
+// with their own k, b and l0 and forces already there, and a list of four springs that share
+// particles; "" when none does.
+std::string sum_mistake_everywhere(const ForceSum& f, const SpringForce& spring,
+                                   const DamperForce& damper) {
+  struct Probe {
+    std::vector<Spring> springs;
+    Vectors r, v, force;
+  };
+  std::vector<Probe> probes;
+  std::mt19937 engine(13);
+  std::uniform_real_distribution<double> any(-1.5, 1.5), positive(0.5, 2.0);
+  const auto random = [&](int cols) {
+    Vectors m(2, cols);
+    for (int j = 0; j < cols; ++j)
+      m.col(j) = Vec2(any(engine), any(engine));
+    return m;
+  };
+  const auto random_spring = [&](int p, int q) {
+    return Spring{p,
+                  q,
+                  SpringFamily::structural,
+                  5.0 + 20.0 * positive(engine),
+                  0.05 * positive(engine),
+                  positive(engine)};
+  };
+  for (int trial = 0; trial < 4; ++trial)
+    probes.push_back({{random_spring(trial % 2, 1 - trial % 2)}, random(2), random(2), random(2)});
+  std::vector<Spring> list;
+  for (const auto& [p, q] : {std::pair{0, 1}, std::pair{1, 3}, std::pair{0, 2}, std::pair{2, 3}})
+    list.push_back(random_spring(p, q));
+  probes.push_back({list, random(4), random(4), Vectors::Zero(2, 4)});
+  probes.push_back({list, random(4), random(4), random(4)});
+  std::vector<Vectors> got;
+  for (const Probe& probe : probes) {
+    Vectors force = probe.force;
+    f(probe.springs, probe.r, probe.v, force);
+    got.push_back(force);
+  }
+  for (const SumMistake& m : sum_mistakes(spring, damper)) {
+    bool everywhere = true;
+    for (std::size_t i = 0; i < probes.size() && everywhere; ++i) {
+      Vectors force = probes[i].force;
+      m.sum(probes[i].springs, probes[i].r, probes[i].v, force);
+      everywhere = got[i].allFinite() && (got[i] - force).norm() <= 1e-9 * (1.0 + force.norm());
+    }
+    if (everywhere) return "likely mistake: " + m.words;
+  }
+  return "";
+}
+
+std::string force_sum_findings(const ForceSum& f, const SpringForce& spring,
+                               const DamperForce& damper) {
+  if (const std::string named = sum_mistake_everywhere(f, spring, damper); !named.empty())
+    return named;
   std::mt19937 engine(9);
   std::uniform_real_distribution<double> any(-1.5, 1.5), positive(0.5, 2.0);
   // One spring between two particles: what each end gets, as α S + β D with S and D the spring's
@@ -307,6 +570,8 @@ std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
   };
   std::vector<Fitted> on_p, on_q;
   std::vector<Spring> tried;
+  Vec2 first_spring = Vec2::Zero(), first_damper = Vec2::Zero();
+  Vec2 first_gained_p = Vec2::Zero(), first_gained_q = Vec2::Zero();
   bool cleared = true, added = true;
   for (int trial = 0; trial < 6; ++trial) {
     Spring s{0,
@@ -328,6 +593,12 @@ std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
               (force.col(1) + fs + fd).norm() <= 1e-9 * (1 + fs.norm() + fd.norm());
     added = added && (gained_p - fs - fd).norm() <= 1e-9 * (1 + fs.norm() + fd.norm()) &&
             (gained_q + fs + fd).norm() <= 1e-9 * (1 + fs.norm() + fd.norm());
+    if (trial == 0) {
+      first_spring = fs;
+      first_damper = fd;
+      first_gained_p = gained_p;
+      first_gained_q = gained_q;
+    }
     on_p.push_back(fit(gained_p, fs, fd));
     on_q.push_back(fit(gained_q, fs, fd));
     tried.push_back(s);
@@ -350,18 +621,14 @@ std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
       if (constant(fits, &Fitted::alpha) && constant(fits, &Fitted::beta)) {
         const double a = fits.front().alpha * sign, b = fits.front().beta * sign;
         if (std::abs(a - 1) < 1e-7 && std::abs(b - 1) < 1e-7) return;
+        // Multiples such as 1.003 are measurements, not a formula's: left to the numbers below.
+        if (!simple(a) || !simple(b)) return;
         std::ostringstream out;
         out << end << " gets "
             << combination({{fits.front().alpha, "F_spring"}, {fits.front().beta, "F_damper"}})
             << " (with F_spring, F_damper the forces on p "
             << "of (1.1), (1.2)), where (2.3)-(2.4) give " << (sign > 0 ? "" : "-")
             << "(F_spring + F_damper)";
-        if (std::string(end) == "q" && std::abs(a) < 1e-7 && std::abs(b) < 1e-7)
-          out << ": only one end of each spring gets its force";
-        else if (std::string(end) == "q" && std::abs(a + 1) < 1e-7 && std::abs(b + 1) < 1e-7)
-          out << ": F_pq is added to both ends with the same sign";
-        else if (std::abs(b) < 1e-7 && std::abs(a - 1) < 1e-7)
-          out << ": the damper's force is left out";
         said.push_back(out.str());
         return;
       }
@@ -397,12 +664,22 @@ std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
             "own rest length: every spring has the rest length 1 m; use each spring's "
             "own (2.3)");
     }
-    if (said.empty())
-      return "likely mistake: one spring's force on its two ends is not F_pq and -F_pq of "
-             "(2.3)-(2.4), and no multiple of the spring's and damper's forces: p gets (" +
-             combination({{on_p.front().alpha, "F_spring"}, {on_p.front().beta, "F_damper"}}) +
-             ") in one spring tried";
-    std::string text = "likely mistake: ";
+    if (said.empty()) {
+      // Nothing exact: the numbers of one spring, in the student's terms.
+      const Spring& s = tried.front();
+      const Vec2 fs = first_spring, fd = first_damper, want = fs + fd;
+      std::ostringstream out;
+      out << "measured: one spring alone (k = " << number(s.k) << " N/m, b = " << number(s.b)
+          << " N*s/m, l0 = " << number(s.rest_length) << " m) changes p's force by ("
+          << number(first_gained_p.x()) << ", " << number(first_gained_p.y()) << ") N and q's by ("
+          << number(first_gained_q.x()) << ", " << number(first_gained_q.y())
+          << ") N, where (2.3)-(2.4) give p F_spring + F_damper = (" << number(want.x()) << ", "
+          << number(want.y()) << ") N and q the opposite (F_spring = (" << number(fs.x()) << ", "
+          << number(fs.y()) << "), F_damper = (" << number(fd.x()) << ", " << number(fd.y())
+          << ")); look at what each term of (2.3) is given";
+      return out.str();
+    }
+    std::string text = "measured: ";
     for (std::size_t i = 0; i < said.size(); ++i)
       text += (i == 0 ? "" : "; ") + said[i];
     return text;
@@ -430,14 +707,14 @@ std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
   if ((got - all).norm() <= 1e-9 * (1 + all.norm())) return "";
   for (std::size_t i = 0; i < springs.size(); ++i)
     if ((got - all + contribution(springs[i])).norm() <= 1e-9 * (1 + all.norm()))
-      return "likely mistake: spring " + std::to_string(i) + " of the " +
-             std::to_string(springs.size()) + " in the list gives no force, the others theirs" +
+      return "measured: spring " + std::to_string(i) + " of the " + std::to_string(springs.size()) +
+             " in the list gives no force, the others theirs" +
              (i + 1 == springs.size() ? ": the loop misses the last spring" : "");
-  return "likely mistake: every spring alone gives its ends the right forces, but a list of "
+  return "measured: every spring alone gives its ends the right forces, but a list of "
          "several sums to something else: what one spring adds must stay when the next is added";
 }
 
-std::string probe_euler_step(const EulerStep& step) {
+std::string euler_step_findings(const EulerStep& step) {
   const double h = 0.1;
   int calls = 0;
   Vectors evaluated_r, evaluated_v;
@@ -484,30 +761,39 @@ std::string probe_euler_step(const EulerStep& step) {
              "order)";
     else if (near(alpha, 1.0) && near(beta, 0.5) && near(gamma, 1.0))
       out << ": the position has an extra h^2 a / 2";
+    else if (near(alpha, 1.0) && near(beta, 0.0) && near(gamma, 1.0) && near(delta, -1.0))
+      out << ": v0 is lost, the velocity is set to h a (v = h a where (1.5) has v += h a)";
     said.push_back(out.str());
   }
-  // Where a is evaluated: a(r) = -r, so v1 = v0 - h r_e tells r_e; a(v) = -v tells v_e.
-  Vectors r1 = r0, v1 = v0;
-  step(
-      [&](const Vectors& rr, const Vectors&) -> const Vectors& {
-        static Vectors a;
-        a = -rr;
-        return a;
-      },
-      h, r1, v1);
-  const Vec2 r_e = -(v1 - v0).col(0) / h;
-  if ((r_e - r0.col(0)).norm() > 1e-9 && said.size() < 2) {
-    const double at = (r_e - r0.col(0)).dot(v0.col(0)) / (h * v0.col(0).squaredNorm());
+  // Where a was evaluated: the constant model saw the r and v it was called with, so this is
+  // read, not inferred from v1 (which another mistake may have changed).
+  if (calls_a == 1 && evaluated_r.cols() == 1 &&
+      ((evaluated_r - r0).norm() > 1e-12 || (evaluated_v - v0).norm() > 1e-12)) {
+    const Vec2 moved = (evaluated_r - r0).col(0), sped = (evaluated_v - v0).col(0);
+    const double at = moved.dot(v0.col(0)) / (h * v0.col(0).squaredNorm());
     std::ostringstream out;
-    out << "the acceleration was evaluated at r0 + " << number(at)
-        << " h v0, where (1.5) takes it at the start of the step, r0 (your step evaluated the "
-           "acceleration after moving the positions)";
+    out << "the acceleration was evaluated at r = (" << number(evaluated_r(0, 0)) << ", "
+        << number(evaluated_r(1, 0)) << "), v = (" << number(evaluated_v(0, 0)) << ", "
+        << number(evaluated_v(1, 0)) << "), where (1.5) takes it at the start of the step, r0 = ("
+        << number(r0(0, 0)) << ", " << number(r0(1, 0)) << "), v0 = (" << number(v0(0, 0)) << ", "
+        << number(v0(1, 0)) << ")";
+    // Named only when the step is otherwise right: a(r0 + h v0, v0) after r += h v0.
+    const bool after_move = sped.norm() <= 1e-12 && (moved - h * v0.col(0)).norm() <= 1e-12 &&
+                            near(alpha, 1.0) && near(beta, 0.0) && near(gamma, 1.0) &&
+                            near(delta, 0.0);
+    if (after_move)
+      out << ": r0 + h v0, the new position (your step evaluated the acceleration after moving "
+             "the positions)";
+    else if ((moved - at * h * v0.col(0)).norm() <= 1e-12)
+      out << ": r0 + " << number(at) << " h v0";
     said.push_back(out.str());
   }
-  return likely_mistake(said);
+  const bool exact = simple(alpha) && simple(beta) && simple(gamma) && simple(delta);
+  if (said.empty()) return "";
+  return exact || calls_a != 1 ? likely_mistake(said) : measured(said);
 }
 
-std::string probe_verlet_step(const VerletStep& step) {
+std::string verlet_step_findings(const VerletStep& step) {
   const double h = 0.05;
   const Vec2 A(0.4, -1.2);
   Vectors acceleration_storage;
@@ -541,6 +827,7 @@ std::string probe_verlet_step(const VerletStep& step) {
   const After p3 = from(zero, zero, zero, constant(A));  // r_{n+1} = γ h² A
   const double alpha = p1.r.x(), beta = p2.r.x(), gamma = p3.r.dot(A) / (h * h * A.squaredNorm());
   std::vector<std::string> said;
+  bool exact = true;  // every coefficient said is a simple value (h a for h^2 a counts)
   if (!near(alpha, 2.0) || !near(beta, -1.0) || !near(gamma, 1.0)) {
     std::ostringstream out;
     out << "without dampers, from r_{n-1} and r_n, the step gives r_{n+1} = "
@@ -548,6 +835,7 @@ std::string probe_verlet_step(const VerletStep& step) {
         << ", where (4.1) has 2 r_n - r_{n-1} + h^2 a";
     if (near(alpha, -1.0) && near(beta, 2.0)) out << ": r_n and r_{n-1} are swapped";
     if (near(gamma, 1.0 / h)) out << ": r_{n+1} has h a where (4.1) has h^2 a";
+    exact = simple(alpha) && simple(beta) && (simple(gamma) || near(gamma, 1.0 / h));
     said.push_back(out.str());
   }
   // The velocity handed back, (4.4): (λ1 r_{n+1} + λ2 r_n + λ3 r_{n-1}) / (2h).
@@ -562,6 +850,7 @@ std::string probe_verlet_step(const VerletStep& step) {
       out << "the velocity handed back is ("
           << combination({{l1, "r_{n+1}"}, {l2b, "r_n"}, {l3, "r_{n-1}"}})
           << ") / (2h), where (4.4) has (3 r_{n+1} - 4 r_n + r_{n-1}) / (2h)";
+      exact = exact && simple(l1) && simple(l2b) && simple(l3);
       said.push_back(out.str());
     }
     if ((p1.kept - e).norm() > 1e-12)
@@ -596,6 +885,7 @@ std::string probe_verlet_step(const VerletStep& step) {
         out << ": (4.3) steps forwards in time";
       else if (near(c[0], 1.0) && near(c[1], 1.0))
         out << ": the h^2/2 a(r_0, v_0) term of (4.3) is missing";
+      exact = exact && simple(c[0]) && simple(c[1]);
       said.push_back(out.str());
     }
   }
@@ -629,13 +919,14 @@ std::string probe_verlet_step(const VerletStep& step) {
       out << "with dampers, (4.1) holds with a velocity ("
           << combination({{lambda, "r_{n+1}"}, {mu, "r_{n-1}"}})
           << ") / (2h) in the damper force, where (4.2) has (r_{n+1} - r_{n-1}) / (2h)";
+      exact = exact && simple(lambda) && simple(mu);
       said.push_back(out.str());
     }
   }
-  return likely_mistake(said);
+  return exact ? likely_mistake(said) : measured(said);
 }
 
-std::string probe_gravity(const GravitySum& f) {
+std::string gravity_findings(const GravitySum& f) {
   Eigen::VectorXd mass(4);
   mass << 0.2, 0.5, 1.0, 2.0;
   const Vec2 g(0.3, -9.81);
@@ -669,18 +960,19 @@ std::string probe_gravity(const GravitySum& f) {
     return "likely mistake: each particle gets g, not m_i g, on particles of 0.2 to 2 kg: "
            "gravity is m·g per particle, equation (5.2): the mass m_i is missing";
   if (same)
-    return "likely mistake: each particle gets " + number(multiple[0]) +
+    return std::string(simple(multiple[0]) ? "likely mistake: " : "measured: ") +
+           "each particle gets " + number(multiple[0]) +
            " m_i g, on particles of 0.2 to 2 kg, where (5.2) adds m_i g" +
            (near(multiple[0], -1.0)  ? std::string(": gravity points along g, not against it")
             : near(multiple[0], 2.0) ? std::string(": gravity is added twice")
                                      : std::string());
-  std::string text = "likely mistake: the multiples of m_i g added differ between particles:";
+  std::string text = "measured: the multiples of m_i g added differ between particles:";
   for (int i = 0; i < 4; ++i)
     text += " " + number(multiple[std::size_t(i)]);
   return text + " (m = 0.2, 0.5, 1, 2 kg), where (5.2) adds m_i g to each";
 }
 
-std::string probe_wind(const WindSum& f) {
+std::string wind_findings(const WindSum& f) {
   WindParameters parameters;
   parameters.enabled = true;
   parameters.direction = Vec2(1.0, 0.4);
@@ -743,7 +1035,7 @@ std::string probe_wind(const WindSum& f) {
   return likely_mistake(said);
 }
 
-std::string probe_pins(const PinHold& f) {
+std::string pins_findings(const PinHold& f) {
   const std::vector<bool> pinned = {true, false, false, true, true, false, true};
   Vectors a(2, 7);
   a << 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, -1.0, -2.0, -3.0, -4.0, -5.0, -6.0, -7.0;
@@ -774,6 +1066,52 @@ std::string probe_pins(const PinHold& f) {
   for (std::size_t i = 0; i < said.size(); ++i)
     text += (i == 0 ? "" : "; ") + said[i];
   return text + ", where (5.5) sets a_i = 0 for a pinned particle and leaves the others";
+}
+
+// A probe calls the student's function on inputs of its own: whatever it throws there is a fact
+// measured, never an exception that would change the test's verdict.
+std::string guarded(const std::string& function, const std::function<std::string()>& probe) {
+  try {
+    return probe();
+  } catch (...) {
+    return "measured: while probing it on inputs of the kit's own, your " + function + " threw " +
+           current_exception_text();
+  }
+}
+
+}  // namespace
+
+std::string probe_spring_force(const SpringForce& f) {
+  return guarded("spring_force", [&] { return spring_force_findings(f); });
+}
+
+std::string probe_damper_force(const DamperForce& f) {
+  return guarded("damper_force", [&] { return damper_force_findings(f); });
+}
+
+std::string probe_force_sum(const ForceSum& f, const SpringForce& spring,
+                            const DamperForce& damper) {
+  return guarded("accumulate_spring_forces", [&] { return force_sum_findings(f, spring, damper); });
+}
+
+std::string probe_euler_step(const EulerStep& step) {
+  return guarded("explicit_euler_step", [&] { return euler_step_findings(step); });
+}
+
+std::string probe_verlet_step(const VerletStep& step) {
+  return guarded("verlet_step", [&] { return verlet_step_findings(step); });
+}
+
+std::string probe_gravity(const GravitySum& f) {
+  return guarded("add_gravity", [&] { return gravity_findings(f); });
+}
+
+std::string probe_wind(const WindSum& f) {
+  return guarded("add_wind", [&] { return wind_findings(f); });
+}
+
+std::string probe_pins(const PinHold& f) {
+  return guarded("hold_pinned", [&] { return pins_findings(f); });
 }
 
 }  // namespace springlab::testing

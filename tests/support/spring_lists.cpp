@@ -131,12 +131,96 @@ std::string missing_in_common(const SpringList& make, const Offsets& offsets,
         if (!everywhere_same) break;
       }
       if (!everywhere_same) continue;
+      // A fact: the missing pairs are exactly these on every size (other differences aside).
       std::string words =
           "every spring " + directions_text(directions) + " " +
           (place.words == "everywhere" ? std::string("is missing") : place.words + " is missing") +
-          ", and no other, on every grid tried (" + std::to_string(probe_sizes.size()) +
+          ", on every grid tried (" + std::to_string(probe_sizes.size()) +
           " sizes from 2x3 to 5x4)";
-      // What such a set is, when the set itself says it.
+      return words;
+    }
+  return "";
+}
+
+// What the extra pairs are, measured: how many join particles with each [row, col] offset, and
+// how many of those lie on one row or across two. Facts only: no cause.
+std::string extras_text(const ListDifference& d) {
+  if (d.extra.empty()) return "";
+  std::map<Pair, long> by_offset;
+  for (const Pair& pair : d.extra)
+    ++by_offset[offset_of(pair, d.cols)];
+  std::ostringstream text;
+  text << "they join particles";
+  bool first = true;
+  for (const auto& [offset, count] : by_offset) {
+    const int rows_apart = offset.first;
+    text << (first ? " " : ", ") << direction_name(offset) << " (" << count << ", "
+         << (rows_apart == 0
+                 ? std::string("on one row")
+                 : std::to_string(rows_apart) + " row" + (rows_apart == 1 ? "" : "s") + " apart")
+         << ")";
+    first = false;
+  }
+  return text.str();
+}
+
+// A concrete wrong version of a family's list: its pairs on a grid, and the words that name it.
+struct ListMistake {
+  std::string words;
+  std::function<std::vector<Pair>(int rows, int cols)> pairs;
+};
+
+// The pairs (p <= q, in order, repeats kept) a list of springs joins.
+std::vector<Pair> sorted_pairs(std::vector<Pair> pairs) {
+  for (Pair& pair : pairs)
+    pair = std::minmax(pair.first, pair.second);
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
+std::vector<Pair> pairs_of(const std::vector<Spring>& springs) {
+  std::vector<Pair> pairs;
+  for (const Spring& s : springs)
+    pairs.push_back({s.p, s.q});
+  return sorted_pairs(pairs);
+}
+
+// The family's loops with another index formula: [i, j] -> index(i, j, rows, cols).
+std::vector<Pair> with_index(int rows, int cols, const Offsets& offsets,
+                             const std::function<int(int, int, int, int)>& index) {
+  std::vector<Pair> pairs;
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < cols; ++j)
+      for (const auto& [di, dj] : offsets)
+        if (i + di >= 0 && i + di < rows && j + dj >= 0 && j + dj < cols)
+          pairs.push_back({index(i, j, rows, cols), index(i + di, j + dj, rows, cols)});
+  return pairs;
+}
+
+std::vector<Pair> all_but(int rows, int cols, const Offsets& offsets, const Pair& changed) {
+  Offsets others;
+  for (const Pair& o : offsets)
+    if (o != changed) others.push_back(o);
+  const std::set<Pair> kept = expected_pairs(rows, cols, others);
+  return {kept.begin(), kept.end()};
+}
+
+std::vector<ListMistake> list_mistakes(const Offsets& offsets) {
+  std::vector<ListMistake> all;
+  all.push_back({"each pair is joined twice (once from each end?): join each pair once",
+                 [offsets](int rows, int cols) {
+                   const std::set<Pair> once = expected_pairs(rows, cols, offsets);
+                   std::vector<Pair> twice(once.begin(), once.end());
+                   twice.insert(twice.end(), once.begin(), once.end());
+                   return twice;
+                 }});
+  // Springs of some directions, at some place, left out, and nothing else.
+  for (const std::vector<Pair>& directions : direction_sets(offsets))
+    for (const Place& place : places()) {
+      std::string words =
+          "every spring " + directions_text(directions) + " " +
+          (place.words == "everywhere" ? std::string("is missing") : place.words + " is missing") +
+          ", and no other, on every grid tried";
       const bool one_direction = directions.size() == 1 && offsets.size() == 2;
       if (one_direction && place.words == "everywhere")
         words += std::find(offsets.begin(), offsets.end(), Pair{1, 1}) != offsets.end()
@@ -145,41 +229,90 @@ std::string missing_in_common(const SpringList& make, const Offsets& offsets,
       else if (place.words == "that reach the last column" ||
                place.words == "that reach the last row")
         words += ": a loop bound one too small";
-      return words;
+      all.push_back({words, [offsets, directions, place](int rows, int cols) {
+                       const std::vector<Pair> gone =
+                           selected(rows, cols, offsets, directions, place);
+                       std::vector<Pair> kept;
+                       for (const Pair& pair : expected_pairs(rows, cols, offsets))
+                         if (std::find(gone.begin(), gone.end(), pair) == gone.end())
+                           kept.push_back(pair);
+                       return kept;
+                     }});
     }
-  return "";
+  for (const Pair& o : offsets) {
+    const auto [di, dj] = o;
+    if (dj == 0) continue;
+    // Only the index checked, not the column: past a row's end the index runs into the next
+    // row (dj > 0), or before its start into the row before the one meant (dj < 0).
+    const std::string column =
+        "j " + std::string(dj > 0 ? "+ " : "- ") + std::to_string(std::abs(dj));
+    all.push_back(
+        {"the springs " + direction_name(o) +
+             " are made from every particle with only the index checked against the grid, not "
+             "the column " +
+             column +
+             (dj > 0 ? ": from the end of a row they wrap around to the start of the next row"
+                     : ": from the start of a row they wrap back to the end of the row before "
+                       "the one meant") +
+             "; check that " + column + " stays inside 0..cols-1",
+         [offsets, o, di = di, dj = dj](int rows, int cols) {
+           std::vector<Pair> pairs = all_but(rows, cols, offsets, o);
+           for (int p = 0; p < rows * cols; ++p) {
+             const int q = p + di * cols + dj;
+             if (q >= 0 && q < rows * cols) pairs.push_back({p, q});
+           }
+           return pairs;
+         }});
+    if (dj < 0)
+      // The cell's other diagonal taken from its top-left corner.
+      all.push_back(
+          {"the spring " + direction_name(o) +
+               " of each cell starts at its top-left "
+               "corner [i, j] (to [i+1, j-1]), where (3.1) joins the cell's other two "
+               "corners [i, j+1]-[i+1, j]: at j = 0 it reaches back to the end of the row "
+               "above",
+           [offsets, o, di = di, dj = dj](int rows, int cols) {
+             std::vector<Pair> pairs = all_but(rows, cols, offsets, o);
+             for (int i = 0; i + di < rows; ++i)
+               for (int j = 0; j + 1 < cols; ++j)
+                 pairs.push_back({i * cols + j, (i + di) * cols + j + dj});
+             return pairs;
+           }});
+  }
+  all.push_back(
+      {"the index is i*rows + j where (2.1) has i*cols + j (the same on square grids "
+       "only): check the index formula (2.1)",
+       [offsets](int rows, int cols) {
+         return with_index(rows, cols, offsets, [](int i, int j, int r, int) { return i * r + j; });
+       }});
+  all.push_back(
+      {"the index is j*rows + i, column by column, where (2.1) has i*cols + j, row by "
+       "row: check the index formula (2.1)",
+       [offsets](int rows, int cols) {
+         return with_index(rows, cols, offsets, [](int i, int j, int r, int) { return j * r + i; });
+       }});
+  return all;
 }
 
-// What the extra pairs are, in words: joins across the end of a row, other families' neighbours.
-std::string extras_text(const ListDifference& d, const Offsets& offsets) {
-  if (d.extra.empty()) return "";
-  long wraps = 0, others = 0;
-  std::map<Pair, long> by_offset;
-  for (const Pair& pair : d.extra) {
-    const int step = pair.second - pair.first;
-    bool wrap = false;
-    for (const auto& [di, dj] : offsets)
-      wrap = wrap || step == di * d.cols + dj;
-    (wrap ? wraps : others) += 1;
-    if (!wrap) ++by_offset[offset_of(pair, d.cols)];
+// The first concrete mistake whose list is the function's, pair for pair, on the test's grid and
+// on every size tried; "" when none is (or the function throws on some size).
+std::string list_mistake_everywhere(const SpringList& make, int rows, int cols,
+                                    const Offsets& offsets) {
+  std::vector<Pair> sizes = probe_sizes;
+  sizes.push_back({rows, cols});
+  std::vector<std::vector<Pair>> got;
+  for (const auto& [r, c] : sizes) {
+    const auto list = list_of(make, r, c);
+    if (!list) return "";
+    got.push_back(pairs_of(*list));
   }
-  std::ostringstream text;
-  if (wraps > 0)
-    text << wraps << " of them wrap around a row's end (their index differs as a neighbour's "
-         << "does, i*cols + j + offset, but they are on different rows: the loop over j runs "
-         << "to the row's last particle)";
-  if (others > 0) {
-    if (wraps > 0) text << "; ";
-    text << others << " join particles";
-    bool first = true;
-    for (const auto& [offset, count] : by_offset) {
-      text << (first ? " " : ", ") << direction_name(offset) << " (" << count << ")";
-      first = false;
-    }
-    text << ": check the index formula (2.1), i*cols + j, and which neighbours each particle "
-            "joins";
+  for (const ListMistake& m : list_mistakes(offsets)) {
+    bool everywhere = true;
+    for (std::size_t i = 0; i < sizes.size() && everywhere; ++i)
+      everywhere = sorted_pairs(m.pairs(sizes[i].first, sizes[i].second)) == got[i];
+    if (everywhere) return m.words;
   }
-  return text.str();
+  return "";
 }
 
 // The count's formula in rows r and columns c over the sizes tried, a r c + b r + c' c + d with
@@ -282,18 +415,20 @@ ListReport describe_list(const SpringList& make, int rows, int cols, const Offse
   report.compared = out.str();
   if (!report.compared.empty() && report.compared.back() == '\n') report.compared.pop_back();
 
-  // What the differences have in common, measured on several sizes.
+  // A concrete wrong list that is the function's on every size tried: named.
+  if (const std::string named = list_mistake_everywhere(make, rows, cols, offsets);
+      !named.empty()) {
+    report.mistake = "likely mistake: " + name + ", " + equation + ": " + named;
+    return report;
+  }
+  // Otherwise what the differences have in common, measured on several sizes: facts, no cause.
   std::vector<std::string> findings;
   if (const std::string missing = missing_in_common(make, offsets, d); !missing.empty())
     findings.push_back(missing);
-  if (!d.doubled.empty() && d.doubled.size() == std::size_t(d.distinct) && d.extra.empty() &&
-      d.missing.empty())
-    findings.push_back("each pair is joined twice (" + std::to_string(d.springs) + " springs for " +
-                       std::to_string(d.distinct) + " pairs)");
-  else if (!d.doubled.empty())
+  if (!d.doubled.empty())
     findings.push_back(std::to_string(d.doubled.size()) + " pair" +
-                       (d.doubled.size() == 1 ? " is" : "s are") + " joined more than once");
-  if (const std::string extras = extras_text(d, offsets); !extras.empty())
+                       (d.doubled.size() == 1 ? " is" : "s are") + " joined more than once here");
+  if (const std::string extras = extras_text(d); !extras.empty())
     findings.push_back(std::to_string(d.extra.size()) + " pair" + (d.extra.size() == 1 ? "" : "s") +
                        " not in " + equation + ": " + extras);
   if (!d.outside.empty())
@@ -310,8 +445,7 @@ ListReport describe_list(const SpringList& make, int rows, int cols, const Offse
     findings.push_back("on the grids tried (r rows, c columns) the distinct pairs number " +
                        got_count + " where " + equation + " gives " + want_count);
   for (std::size_t i = 0; i < findings.size(); ++i)
-    report.mistake +=
-        (i == 0 ? "likely mistake: " + name + ", " + equation + ": " : "; ") + findings[i];
+    report.mistake += (i == 0 ? "measured: " + name + ", " + equation + ": " : "; ") + findings[i];
   return report;
 }
 
