@@ -286,6 +286,17 @@ TEST_CASE("Spring lists: a guess never contradicts the pairs printed beside it",
   CHECK_THAT(wrapped.mistake, Contains("wrap around to the start of the next row"));
   CHECK_THAT(wrapped.mistake, !Contains("joined twice"));
 
+  // Every pair joined from both ends, (p, q) and (q, p): named on every size, not only here.
+  const SpringList twice = [&](int rows, int cols) {
+    std::vector<Spring> springs = kit().structural_springs(rows, cols, family);
+    for (const Spring& s : kit().structural_springs(rows, cols, family))
+      springs.push_back({s.q, s.p, s.family, s.k, s.b, s.rest_length});
+    return springs;
+  };
+  const ListReport doubled = describe_list(twice, 1, 2, structural, "structural_springs", "(2.2)");
+  INFO(doubled.mistake);
+  CHECK_THAT(doubled.mistake, Contains("likely mistake") && Contains("each pair is joined twice"));
+
   // An extra pair on one row whose index differs as a diagonal neighbour's does ([0, 0]-[0, 4]
   // on 5 columns), in the first row only: no concrete mistake of the kit's gives it, so no cause
   // is given, and it is not called a "wrap around a row's end".

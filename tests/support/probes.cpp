@@ -440,6 +440,7 @@ std::vector<SumMistake> sum_mistakes(const SpringForce& spring, const DamperForc
     return ends(f_pq, 1.0, -1.0);
   };
   const PerSpring newton = with(right);
+  const SceneParameters lab;  // the lab's values, which a spring of the probes never has
   return {
       {"the forces passed in are lost: `force` was cleared (set to zero) first, where (2.4) adds "
        "to what is already there",
@@ -488,6 +489,16 @@ std::vector<SumMistake> sum_mistakes(const SpringForce& spring, const DamperForc
        each(with([=](const Spring& s, In r, In v) {
               return Vec2(spring(r.col(s.p), r.col(s.q), s.k, 1.0) +
                           damper(v.col(s.p), v.col(s.q), s.b));
+            }),
+            0, 0, false, false)},
+      {"every spring gets the lab scene's structural values, k = " + number(lab.structural.k) +
+           " N/m, b = " + number(lab.structural.b) +
+           " N*s/m and l0 = " + number(lab.structural.rest_length) +
+           " m, whatever its own: (2.3) takes each spring's own s.k, s.b and s.rest_length",
+       each(with([=](const Spring& s, In r, In v) {
+              return Vec2(
+                  spring(r.col(s.p), r.col(s.q), lab.structural.k, lab.structural.rest_length) +
+                  damper(v.col(s.p), v.col(s.q), lab.structural.b));
             }),
             0, 0, false, false)},
       {"the first spring of the list (springs[0]) gives no force, the others theirs: the loop "
@@ -660,9 +671,9 @@ std::string force_sum_findings(const ForceSum& f, const SpringForce& spring,
       }
       if (unit_rest)
         said.push_back(
-            "the springs' forces are those of rest length 1 m, whatever the spring's "
-            "own rest length: every spring has the rest length 1 m; use each spring's "
-            "own (2.3)");
+            "on springs of k = 20 N/m without dampers (the ones tried), the forces are those "
+            "of rest length 1 m, whatever the spring's own rest length; look at the rest "
+            "length (2.3) gives spring_force");
     }
     if (said.empty()) {
       // Nothing exact: the numbers of one spring, in the student's terms.

@@ -173,7 +173,7 @@ struct ListMistake {
 // The pairs (p <= q, in order, repeats kept) a list of springs joins.
 std::vector<Pair> sorted_pairs(std::vector<Pair> pairs) {
   for (Pair& pair : pairs)
-    pair = std::minmax(pair.first, pair.second);
+    if (pair.first > pair.second) std::swap(pair.first, pair.second);
   std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
