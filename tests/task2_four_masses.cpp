@@ -199,7 +199,7 @@ TEST_CASE("Damper forces: minus the gradient of the dissipation, so they never a
        {std::pair{"the dampers' power has the opposite sign: the damper forces of (1.2) point "
                   "the wrong way",
                   -1.0},
-        std::pair{"the dampers' power is zero: the term is missing", 0.0},
+        std::pair{"the dampers' power is zero: no damper force reaches any particle", 0.0},
         std::pair{"the dampers' power is twice what it should be: each damper counted twice, or "
                   "2b",
                   2.0},

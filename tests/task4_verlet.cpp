@@ -186,8 +186,9 @@ TEST_CASE("Verlet: with dampers, the iteration of section 4 makes (4.1) and (4.2
              !probed.empty() && damped.evaluations >= needed)
       why << probed;  // what the step solves
     else
-      why << "measured: after " << damped.evaluations << " evaluations of a, the v_n in (4.1) is "
-          << gap << " m/s away from (4.2)'s (r_{n+1} - r_{n-1}) / (2h); repeat (4.1) and (4.2) "
+      why << "likely mistake: after " << damped.evaluations
+          << " evaluations of a, the v_n in (4.1) is " << gap
+          << " m/s away from (4.2)'s (r_{n+1} - r_{n-1}) / (2h); repeat (4.1) and (4.2) "
           << "until velocity_settled(...)";
     UNSCOPED_INFO(why.str());
   }
@@ -221,7 +222,7 @@ TEST_CASE("Verlet (4.3): the first step makes r_{-1} by a Taylor step backwards"
   REQUIRE(calls > 0);
   if (!history.has_previous)
     UNSCOPED_INFO(
-        "measured: after the first step history.has_previous is still false, so the "
+        "likely mistake: after the first step history.has_previous is still false, so the "
         "next step makes r_{-1} by (4.3) again instead of using the r_n the history "
         "keeps; the first step must set it to true");
   CHECK(history.has_previous);

@@ -26,10 +26,11 @@ std::string likely_mistake(const std::vector<std::string>& said) {
   return text;
 }
 
-// "measured: A; B": what was measured when no concrete mistake reproduces it, or "".
+// What was measured when no concrete mistake reproduces it, or "": facts only, no cause, on the
+// line the reporter shows under "likely mistake: " (the line the mutants' judge reads).
 std::string measured(const std::vector<std::string>& said) {
   if (said.empty()) return "";
-  std::string text = "measured: ";
+  std::string text = "likely mistake: ";
   for (std::size_t i = 0; i < said.size(); ++i)
     text += (i == 0 ? "" : "; ") + said[i];
   return text;
@@ -185,7 +186,7 @@ const std::vector<SpringMistake>& spring_mistakes() {
        [](V d, double k, double l0) { return Vec2(-2 * k * (d.norm() - l0) * d / d.norm()); }},
       {"the spring force (1.1) is half as large as it should be",
        [](V d, double k, double l0) { return Vec2(-0.5 * k * (d.norm() - l0) * d / d.norm()); }},
-      {"the spring force (1.1) is zero: the term is missing",
+      {"the spring force (1.1) is zero on every spring tried, stretched or compressed",
        [](V, double, double) { return Vec2(Vec2::Zero()); }},
   };
   return all;
@@ -255,7 +256,7 @@ std::string spring_force_findings(const SpringForce& f) {
            "0.6 and 2.5 l0: a division by zero or a square root of a negative number?";
   if (worst_across > 1e-9 * k) {
     std::ostringstream out;
-    out << "measured: the force is not along the spring: it makes an angle of up to "
+    out << "likely mistake: the force is not along the spring: it makes an angle of up to "
         << number(std::abs(angle)) << " degrees with r_q - r_p on the springs tried, and (1.1) "
         << "is along r_p - r_q (look at which components, and which ends, the direction uses)";
     return out.str();
@@ -281,21 +282,21 @@ std::string spring_force_findings(const SpringForce& f) {
   const double per = proportional ? k : 1.0;  // the law is said per k when it is k times one
   const auto at_1 = fit(k, 1.0, per), at_2 = fit(k, 2.0, per);
   if (!at_1 || !at_2)
-    return "measured: " + along_examples(along) +
+    return "likely mistake: " + along_examples(along) +
            "; no law a L^3 + b L^2 + c L + d + e/L fits it on the lengths tried";
   // Each coefficient as κ l0^m, from l0 = 1 and l0 = 2.
   std::vector<Term> terms;
   bool exact = true;
   for (int i = 0; i < length_terms; ++i) {
     const auto m = power_of((*at_1)[i], (*at_2)[i]);
-    if (!m) return "measured: " + along_examples(along);
+    if (!m) return "likely mistake: " + along_examples(along);
     exact = exact && simple((*at_1)[i]);
     terms.push_back({(*at_1)[i], length_powers[i], *m});
   }
   const std::string law = formula(terms);
   if (law == "L - l0" && proportional) return "";
   // A law with coefficients such as 3e-8 or 0.95 is a measurement, not a formula someone wrote.
-  if (!exact) return "measured: " + along_examples(along);
+  if (!exact) return "likely mistake: " + along_examples(along);
   std::ostringstream out;
   out << "likely mistake: along the spring, towards q, the force is ";
   if (proportional)
@@ -392,11 +393,7 @@ std::string damper_force_findings(const DamperForce& f) {
     out << ": it ignores v_q";
   else if (std::abs(*on_p) < 1e-12)
     out << ": it ignores v_p";
-  // Multiples such as 0.95 b are measured, not a formula's: said as measurements.
-  std::string text = out.str();
-  if ((!simple(*on_p) || !simple(*on_q) || b_power < 0.0) && text.rfind("likely mistake: ", 0) == 0)
-    text.replace(0, 16, "measured: ");
-  return text;
+  return out.str();  // multiples such as 0.95 b come with no cause: only exact ones have one
 }
 
 // Concrete wrong versions of (2.3)-(2.4), each run on every probe before it is named. `spring`
@@ -680,7 +677,7 @@ std::string force_sum_findings(const ForceSum& f, const SpringForce& spring,
       const Spring& s = tried.front();
       const Vec2 fs = first_spring, fd = first_damper, want = fs + fd;
       std::ostringstream out;
-      out << "measured: one spring alone (k = " << number(s.k) << " N/m, b = " << number(s.b)
+      out << "likely mistake: one spring alone (k = " << number(s.k) << " N/m, b = " << number(s.b)
           << " N*s/m, l0 = " << number(s.rest_length) << " m) changes p's force by ("
           << number(first_gained_p.x()) << ", " << number(first_gained_p.y()) << ") N and q's by ("
           << number(first_gained_q.x()) << ", " << number(first_gained_q.y())
@@ -690,7 +687,7 @@ std::string force_sum_findings(const ForceSum& f, const SpringForce& spring,
           << ")); look at what each term of (2.3) is given";
       return out.str();
     }
-    std::string text = "measured: ";
+    std::string text = "likely mistake: ";
     for (std::size_t i = 0; i < said.size(); ++i)
       text += (i == 0 ? "" : "; ") + said[i];
     return text;
@@ -718,10 +715,10 @@ std::string force_sum_findings(const ForceSum& f, const SpringForce& spring,
   if ((got - all).norm() <= 1e-9 * (1 + all.norm())) return "";
   for (std::size_t i = 0; i < springs.size(); ++i)
     if ((got - all + contribution(springs[i])).norm() <= 1e-9 * (1 + all.norm()))
-      return "measured: spring " + std::to_string(i) + " of the " + std::to_string(springs.size()) +
-             " in the list gives no force, the others theirs" +
+      return "likely mistake: spring " + std::to_string(i) + " of the " +
+             std::to_string(springs.size()) + " in the list gives no force, the others theirs" +
              (i + 1 == springs.size() ? ": the loop misses the last spring" : "");
-  return "measured: every spring alone gives its ends the right forces, but a list of "
+  return "likely mistake: every spring alone gives its ends the right forces, but a list of "
          "several sums to something else: what one spring adds must stay when the next is added";
 }
 
@@ -795,7 +792,7 @@ std::string euler_step_findings(const EulerStep& step) {
     if (after_move)
       out << ": r0 + h v0, the new position (your step evaluated the acceleration after moving "
              "the positions)";
-    else if ((moved - at * h * v0.col(0)).norm() <= 1e-12)
+    else if (moved.norm() > 1e-12 && (moved - at * h * v0.col(0)).norm() <= 1e-12)
       out << ": r0 + " << number(at) << " h v0";
     said.push_back(out.str());
   }
@@ -971,13 +968,12 @@ std::string gravity_findings(const GravitySum& f) {
     return "likely mistake: each particle gets g, not m_i g, on particles of 0.2 to 2 kg: "
            "gravity is m·g per particle, equation (5.2): the mass m_i is missing";
   if (same)
-    return std::string(simple(multiple[0]) ? "likely mistake: " : "measured: ") +
-           "each particle gets " + number(multiple[0]) +
+    return "likely mistake: each particle gets " + number(multiple[0]) +
            " m_i g, on particles of 0.2 to 2 kg, where (5.2) adds m_i g" +
            (near(multiple[0], -1.0)  ? std::string(": gravity points along g, not against it")
             : near(multiple[0], 2.0) ? std::string(": gravity is added twice")
                                      : std::string());
-  std::string text = "measured: the multiples of m_i g added differ between particles:";
+  std::string text = "likely mistake: the multiples of m_i g added differ between particles:";
   for (int i = 0; i < 4; ++i)
     text += " " + number(multiple[std::size_t(i)]);
   return text + " (m = 0.2, 0.5, 1, 2 kg), where (5.2) adds m_i g to each";
@@ -1085,8 +1081,8 @@ std::string guarded(const std::string& function, const std::function<std::string
   try {
     return probe();
   } catch (...) {
-    return "measured: while probing it on inputs of the kit's own, your " + function + " threw " +
-           current_exception_text();
+    return "likely mistake: while probing it on inputs of the kit's own, your " + function +
+           " threw " + current_exception_text();
   }
 }
 

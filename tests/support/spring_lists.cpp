@@ -445,7 +445,8 @@ ListReport describe_list(const SpringList& make, int rows, int cols, const Offse
     findings.push_back("on the grids tried (r rows, c columns) the distinct pairs number " +
                        got_count + " where " + equation + " gives " + want_count);
   for (std::size_t i = 0; i < findings.size(); ++i)
-    report.mistake += (i == 0 ? "measured: " + name + ", " + equation + ": " : "; ") + findings[i];
+    report.mistake +=
+        (i == 0 ? "likely mistake: " + name + ", " + equation + ": " : "; ") + findings[i];
   return report;
 }
 
