@@ -394,6 +394,47 @@ TEST_CASE("Verlet: a step that cannot settle is reported, not turned into NaN",
   CHECK(first_moved);
 }
 
+TEST_CASE("Verlet: a strongly damped step that needs dozens of passes still settles",
+          "[task4][verlet][stability]") {
+  INFO(
+      "verlet_max_iterations: while h c / 2 < 1 the passes of (4.1)-(4.2) settle, some steps "
+      "only after dozens of them; verlet_step gives up only after verlet_max_iterations");
+  // h c / 2 = 0.6: each pass shrinks the error of v_n by 0.6, so from StepFrom's guess the
+  // passes reach velocity_settled (1e-12 of the scale) only after `needed` of them, well
+  // beyond a handful and well within verlet_max_iterations.
+  const StepFrom s;
+  LinearOscillator damped{16.0, 1.2 / s.h};
+  const double q = s.h * damped.c / 2.0;
+  const Vectors solved = solved_step(damped, s.h, s.r, s.r_previous);
+  const Vectors v_solved = (solved - s.r_previous) / (2.0 * s.h);
+  const double scale = std::max(largest(v_solved), largest(s.r) / s.h);
+  const long needed =
+      long(std::ceil(std::log(1e-12 * scale / largest(s.v - v_solved)) / std::log(q)));
+  REQUIRE(needed > 20);
+  REQUIRE(needed < verlet_max_iterations);
+  Vectors r, v;
+  VerletHistory history;
+  bool returned = false;
+  std::string why;
+  try {
+    s.step(damped.function(), r, v, history);
+    returned = true;
+  } catch (const StepFailed&) {
+    std::ostringstream text;
+    text << "verlet_step threw StepFailed after " << damped.evaluations
+         << " evaluations of a, where h c / 2 = " << q << " settles after about " << needed
+         << " passes: give up only after verlet_max_iterations = " << verlet_max_iterations;
+    why = text.str();
+  } catch (...) {
+    why = "verlet_step threw " + current_exception_text() + " on a step that settles";
+  }
+  CAPTURE(q, needed, damped.evaluations);
+  if (!returned) UNSCOPED_INFO(why);
+  REQUIRE(returned);
+  INFO("compared: r_{n+1} with the one (4.1) and (4.2) solved together give");
+  CHECK(largest(r - solved) <= 1e-10 * largest(s.r));
+}
+
 TEST_CASE("Verlet converges with order 2 to the exact two-mass solution",
           "[task4][verlet][order]") {
   INFO(
