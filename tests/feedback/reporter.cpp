@@ -89,6 +89,10 @@ std::string raw_lines(const Catch::AssertionResult& result) {
                      std::string(result.getTestMacroName()) + "(" + result.getExpression() + ")";
   if (result.hasExpandedExpression())
     text += "\nraw: with values: " + result.getExpandedExpression();
+  // Every line marked, also those of an expansion Catch2 spreads over several ("lhs\n==\nrhs"):
+  // an unmarked one would reach the student as a stray "==".
+  for (auto at = text.find('\n'); at != std::string::npos; at = text.find('\n', at + 1))
+    if (text.compare(at + 1, 5, "raw: ") != 0) text.insert(at + 1, "raw: ");
   return text;
 }
 
