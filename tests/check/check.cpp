@@ -119,17 +119,12 @@ std::string seconds_text(double s) {
 // Why a test that did not finish failed, in the grader's words where it has the same facts.
 std::string ending_text(const Ended& e) {
   if (!e.started) return "the check could not start the test";
-  if (e.timed_out)
-    return "timed out: stopped after " + seconds_text(time_limit) + " (the limit is " +
-           seconds_text(time_limit) + "; an endless loop?)";
+  if (e.timed_out) return timed_out_text(seconds_text(time_limit), seconds_text(time_limit));
 #ifdef SIGXFSZ
-  if (e.signal == SIGXFSZ)
-    return "printed more than " + std::to_string(output_limit_mb) +
-           " MB: stopped (printing inside a loop over every step?)";
+  if (e.signal == SIGXFSZ) return output_limit_text(long(output_limit_mb));
 #endif
   if (e.signal != 0) return "crashed: " + signal_text(e.signal);
-  return "exited before the test finished (exit status " + std::to_string(e.exit_status) +
-         "): does your code call exit(), _exit() or abort()?";
+  return early_exit_text(std::to_string(e.exit_status));
 }
 
 TestResult run_test(const TestInfo& test, int index, int task, const fs::path& work) {

@@ -143,6 +143,20 @@ std::string printable(const std::string& text) {
   return out;
 }
 
+std::string timed_out_text(const std::string& after, const std::string& limit) {
+  return "timed out: stopped after " + after + " (the limit is " + limit + "; an endless loop?)";
+}
+
+std::string output_limit_text(long megabytes) {
+  return "printed more than " + std::to_string(megabytes) +
+         " MB: stopped (printing inside a loop over every step?)";
+}
+
+std::string early_exit_text(const std::string& status) {
+  return "exited before the test finished (exit status " + status +
+         "): does your code call exit(), _exit() or abort()?";
+}
+
 std::string signal_text(int signal) {
   switch (signal) {
     case SIGSEGV:

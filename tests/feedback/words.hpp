@@ -40,6 +40,14 @@ std::string escaped(const std::string& name);
 /// How a test process that a signal ended is described ("crashed: " + this).
 std::string signal_text(int signal);
 
+/// Why a test process that did not finish failed, the same words for the grader and the check:
+/// "timed out: stopped after 61 s (the limit is 60 s; an endless loop?)",
+std::string timed_out_text(const std::string& after, const std::string& limit);
+/// "printed more than 64 MB: stopped (printing inside a loop over every step?)",
+std::string output_limit_text(long megabytes);
+/// "exited before the test finished (exit status 1): does your code call exit(), ...?".
+std::string early_exit_text(const std::string& status);
+
 /// A failure's explanation without Catch2's own form of it (its "raw: " lines: file, line and
 /// expression), which only whoever asks for it sees.
 std::string without_raw_lines(const std::string& message);

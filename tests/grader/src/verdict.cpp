@@ -116,9 +116,7 @@ std::string worker_ending(const std::string& record, const std::string& output,
     return "ended while your code was being loaded, before the test began (" +
            (w.count("exit") > 0 ? "exit status " + w.at("exit") : std::string("killed")) +
            "): does the initialiser of a global variable call exit()?";
-  if (!finished && w.count("exit") > 0)
-    return "exited before the test finished (exit status " + w.at("exit") +
-           "): does your code call exit(), _exit() or abort()?";
+  if (!finished && w.count("exit") > 0) return early_exit_text(w.at("exit"));
   // The worker finished, but its answers did not fit the test.
   return "your code's answers could not be checked: " + stopped;
 }
@@ -152,14 +150,12 @@ RunVerdict judge(const Outcome& o, const std::string& secret, const Limits& limi
     return {false, "the grader could not start the test: " + o.start_error};
   switch (o.stopped) {
     case Stop::wall_time:
-      return {false, "timed out: stopped after " + seconds(o.wall_seconds) + " (the limit is " +
-                         text.time + "; an endless loop?)"};
+      return {false, timed_out_text(seconds(o.wall_seconds), text.time)};
     case Stop::cpu_time:
       return {false, "used more than " + seconds(std::ceil(limits.cpu_seconds)) +
                          " of processor time (the limit is " + text.time + "): stopped"};
     case Stop::output:
-      return {false, "printed more than " + std::to_string(limits.output_limit >> 20) +
-                         " MB: stopped (printing inside a loop over every step?)"};
+      return {false, output_limit_text(long(limits.output_limit >> 20))};
     case Stop::memory:
       return {false,
               "used more than " + std::to_string(limits.resident_mb) + " MB of memory: stopped"};
