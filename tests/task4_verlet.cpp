@@ -364,10 +364,12 @@ TEST_CASE("Verlet: a step that cannot settle is reported, not turned into NaN",
   const Vectors r0 = r, v0 = v;
   const Vectors r1 = solved_step(overdamped, 0.01, r0, taylor_backwards(overdamped, 0.01, r0, v0));
   bool first_done = false, first_moved = false, step_failed = false;
+  long before = 0;  // evaluations before the step that fails
   std::ostringstream why, why_first;
   try {
     verlet_step(model, 0.01, r, v, history);
     first_done = true;
+    before = overdamped.evaluations;
     first_moved = largest(r - r1) <= 1e-10 * largest(r0);
     if (!first_moved)
       why_first << "the first step, which settles at once (v_0 solves (4.1)-(4.2)), did not move r "
@@ -392,6 +394,16 @@ TEST_CASE("Verlet: a step that cannot settle is reported, not turned into NaN",
   CHECK(step_failed);
   if (!first_moved) UNSCOPED_INFO(why_first.str());
   CHECK(first_moved);
+  // Each pass costs one evaluation of a: a step that gives up after verlet_max_iterations passes
+  // has made exactly that many, no more and no fewer.
+  if (step_failed && first_done) {
+    const long passes = overdamped.evaluations - before;
+    INFO(
+        "compared: the evaluations of a in the step that threw StepFailed, with "
+        "verlet_max_iterations = "
+        << verlet_max_iterations << " (one a pass)");
+    CHECK(passes == long(verlet_max_iterations));
+  }
 }
 
 TEST_CASE("Verlet: a strongly damped step that needs dozens of passes still settles",
