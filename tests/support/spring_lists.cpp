@@ -397,6 +397,19 @@ ListReport describe_list(const SpringList& make, int rows, int cols, const Offse
                          const std::string& name, const std::string& equation) {
   const auto here_list = list_of(make, rows, cols);
   if (!here_list) return {};
+  // The same grid twice must give the same list: a list kept from call to call (a static vector)
+  // grows with each call, and every count below would be of a list the test never saw.
+  if (const auto again = list_of(make, rows, cols); again && again->size() != here_list->size()) {
+    ListReport report;
+    report.compared = "compared: the springs " + name + "(" + std::to_string(rows) + ", " +
+                      std::to_string(cols) + ") returns on two calls in a row with that grid";
+    report.mistake = "likely mistake: " + name + " returns " + std::to_string(here_list->size()) +
+                     " springs, then " + std::to_string(again->size()) +
+                     " when called again with the same grid: a list kept from one call to the "
+                     "next (a static vector, or one outside the function) keeps what earlier "
+                     "calls put in it; build a new list in each call";
+    return report;
+  }
   const ListDifference d = compare_list(*here_list, rows, cols, offsets);
   if (d.same()) return {};
   std::ostringstream out;
