@@ -1,4 +1,6 @@
-// Every implementation build in one program: the reference and each "student's task N".
+// Every implementation build in one program: the reference and each "student's task N". Built
+// with SPRINGLAB_REFERENCE_ONLY (the page in a browser without the student's code, viewer/web/),
+// the reference alone.
 #include "springlab/divergence.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/implementation.hpp"
@@ -9,6 +11,7 @@ namespace springlab {
 namespace reference {
 const Implementation& implementation();
 }
+#ifndef SPRINGLAB_REFERENCE_ONLY
 namespace student_task1 {
 const Implementation& implementation();
 }
@@ -24,6 +27,7 @@ const Implementation& implementation();
 namespace student_task5 {
 const Implementation& implementation();
 }
+#endif
 
 const Implementation& reference_implementation() {
   return reference::implementation();
@@ -46,6 +50,10 @@ bool reference_is_available() {
 }
 
 const Implementation& student_implementation(int task) {
+#ifdef SPRINGLAB_REFERENCE_ONLY
+  throw InvalidParameter("--impl student", "task " + std::to_string(task),
+                         "a build with the student's code: ./lab web --impl student");
+#else
   switch (task) {
     case 1:
       return student_task1::implementation();
@@ -59,6 +67,7 @@ const Implementation& student_implementation(int task) {
       return student_task5::implementation();
   }
   throw InvalidParameter("task", std::to_string(task), "1, 2, 3, 4 or 5");
+#endif
 }
 
 }  // namespace springlab

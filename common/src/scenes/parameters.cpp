@@ -19,9 +19,7 @@ namespace springlab {
 namespace {
 
 std::string number(double x) {
-  char text[32];
-  auto [end, error] = std::to_chars(text, text + sizeof text, x);
-  return error == std::errc{} ? std::string(text, end) : std::string("?");
+  return shortest_text(x);
 }
 
 std::string unit_after(std::string text, std::string_view unit) {

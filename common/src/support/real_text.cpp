@@ -5,6 +5,7 @@
 #include <charconv>
 #include <clocale>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <string>
 
@@ -79,6 +80,48 @@ RealText parse_real(std::string_view text) {
   return out;
 #else
   return parse_real_portable(text);
+#endif
+}
+
+std::string shortest_text_portable(double x) {
+  if (std::isnan(x)) return std::signbit(x) ? "-nan" : "nan";
+  if (std::isinf(x)) return x < 0 ? "-inf" : "inf";
+  if (x == 0) return std::signbit(x) ? "-0" : "0";
+  char text[40];
+  int digits = 1;
+  for (; digits < 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*e", digits - 1, x);
+    if (std::strtod(text, nullptr) == x) break;
+  }
+  std::snprintf(text, sizeof text, "%.*e", digits - 1, x);
+  const std::string scientific = text;  // "-1.25e+02": a sign, the digits, the exponent
+  const std::size_t e = scientific.find('e');
+  const int exponent = std::atoi(scientific.c_str() + e + 1);
+  std::string significant;
+  for (const char c : scientific.substr(0, e))
+    if (digit(c)) significant += c;
+  const int count = int(significant.size());
+  std::string fixed = x < 0 ? "-" : "";
+  if (exponent < 0)
+    fixed += "0." + std::string(std::size_t(-exponent - 1), '0') + significant;
+  else if (exponent + 1 >= count && exponent < 24) {
+    std::snprintf(text, sizeof text, "%.0f", x);  // a whole number: its exact digits, as to_chars
+    fixed = text;                                 // writes them
+  } else if (exponent + 1 >= count)               // longer than the scientific text anyway
+    fixed += significant + std::string(std::size_t(exponent + 1 - count), '0');
+  else
+    fixed += significant.substr(0, std::size_t(exponent + 1)) + "." +
+             significant.substr(std::size_t(exponent + 1));
+  return fixed.size() <= scientific.size() ? fixed : scientific;
+}
+
+std::string shortest_text(double x) {
+#if defined(_LIBCPP_VERSION) && _LIBCPP_VERSION < 14000
+  return shortest_text_portable(x);
+#else
+  char text[32];
+  const auto [end, error] = std::to_chars(text, text + sizeof text, x);
+  return error == std::errc{} ? std::string(text, end) : std::string("?");
 #endif
 }
 
