@@ -27,6 +27,21 @@ const strainColours = (() => {
   return out;
 })();
 
+// The same colours packed as the pixels of an ImageData (bytes r, g, b, a: little-endian words).
+const pack = ([r, g, b], a = 255) => ((a << 24) | (b << 16) | (g << 8) | r) >>> 0;
+const strainPixels = (() => {
+  const out = new Uint32Array(2 * strainSteps + 1);
+  strainColours.forEach((c, k) => { out[k] = pack(c.match(/\d+/g).map(Number)); });
+  return out;
+})();
+const ghostPixel = pack([70, 150, 200]);
+const backgroundPixel = pack([24, 26, 33]);
+
+// Above this many springs they are drawn as one-pixel lines written into an image, as the desktop
+// viewer's pixel canvas does: a canvas path of 59,000 antialiased segments (the 100x100 fabric)
+// took about 18 ms a frame in headless Chromium, these lines a few.
+const pixelSprings = 8000;
+
 // World (m, y up) to canvas pixels for one view: a centre and a scale, pixels a metre.
 class Camera {
   constructor() { this.cx = 0; this.cy = 0; this.scale = 100; this.fitted = false; }
@@ -64,7 +79,52 @@ class Camera {
   }
 }
 
-// One run drawn into `view` (a rectangle of the canvas): springs by strain, then particles.
+// Springs as one-pixel lines (Bresenham's) in `image`, the whole canvas, clipped to `view`.
+function pixelSpringLines(image, camera, view, run, options) {
+  const data = new Uint32Array(image.data.buffer);
+  const width = image.width;
+  const r = run.positions, ends = run.springs.ends, rest = run.springs.rest, family = run.springs.family;
+  const x0 = view.x, y0 = view.y, x1 = view.x + view.width, y1 = view.y + view.height;
+  const ox = view.x + view.width / 2 - camera.cx * camera.scale;
+  const oy = view.y + view.height / 2 + camera.cy * camera.scale;
+  const n = r.length / 2;
+  const sx = new Int32Array(n), sy = new Int32Array(n);
+  for (let i = 0; i < n; ++i) {
+    const x = ox + r[2 * i] * camera.scale, y = oy - r[2 * i + 1] * camera.scale;
+    // Far off the canvas (a run blowing up) is clamped: its lines are clipped anyway.
+    sx[i] = Math.round(Math.max(-1e6, Math.min(1e6, Number.isFinite(x) ? x : 1e6)));
+    sy[i] = Math.round(Math.max(-1e6, Math.min(1e6, Number.isFinite(y) ? y : 1e6)));
+  }
+  const scale = options.strainScale;
+  for (let s = 0; s < rest.length; ++s) {
+    if (options.hidden.has(family[s])) continue;
+    const p = ends[2 * s], q = ends[2 * s + 1];
+    let colour = ghostPixel;
+    if (!options.ghost) {
+      const dx = r[2 * p] - r[2 * q], dy = r[2 * p + 1] - r[2 * q + 1];
+      const strain = (Math.sqrt(dx * dx + dy * dy) - rest[s]) / rest[s];
+      const k = Math.round(Math.max(-1, Math.min(1, strain / scale)) * strainSteps);
+      colour = strainPixels[Number.isFinite(k) ? k + strainSteps : 2 * strainSteps];
+    }
+    let x = sx[p], y = sy[p];
+    const xe = sx[q], ye = sy[q];
+    if ((x < x0 && xe < x0) || (x >= x1 && xe >= x1) || (y < y0 && ye < y0) || (y >= y1 && ye >= y1)) continue;
+    const ax = Math.abs(xe - x), ay = -Math.abs(ye - y);
+    if (ax - ay > 4000) continue;  // a line thousands of pixels long: a run that blew up
+    const stepX = x < xe ? 1 : -1, stepY = y < ye ? 1 : -1;
+    let error = ax + ay;
+    for (;;) {
+      if (x >= x0 && x < x1 && y >= y0 && y < y1) data[y * width + x] = colour;
+      if (x === xe && y === ye) break;
+      const e2 = 2 * error;
+      if (e2 >= ay) { error += ay; x += stepX; }
+      if (e2 <= ax) { error += ax; y += stepY; }
+    }
+  }
+}
+
+// One run drawn into `view` (a rectangle of the canvas): springs by strain (unless options.pixels
+// has drawn them already), then particles.
 function drawRun(ctx, camera, view, run, options) {
   const r = run.positions, ends = run.springs.ends, rest = run.springs.rest;
   const family = run.springs.family;
@@ -77,7 +137,9 @@ function drawRun(ctx, camera, view, run, options) {
     sx[i] = ox + r[2 * i] * camera.scale;
     sy[i] = oy - r[2 * i + 1] * camera.scale;
   }
-  if (options.ghost) {
+  if (options.pixels) {
+    // drawn by pixelSpringLines
+  } else if (options.ghost) {
     const path = new Path2D();
     for (let s = 0; s < rest.length; ++s) {
       if (options.hidden.has(family[s])) continue;

@@ -86,6 +86,17 @@ function draw() {
                      rings, ghost: false};
     const reference = lab.positions(true);
     const pinned = lab.pinned();
+    if (page.springs.rest.length > pixelSprings) {
+      if (!page.image || page.image.width !== canvas.width || page.image.height !== canvas.height)
+        page.image = ctx.createImageData(canvas.width, canvas.height);
+      new Uint32Array(page.image.data.buffer).fill(backgroundPixel);
+      if (reference)
+        pixelSpringLines(page.image, page.camera, views.reference || views.primary,
+                         {positions: reference, springs: page.springs}, {...options, ghost: !views.reference});
+      pixelSpringLines(page.image, page.camera, views.primary, {positions, springs: page.springs}, options);
+      ctx.putImageData(page.image, 0, 0);
+      options.pixels = true;
+    }
     if (reference && views.reference) {
       drawRun(ctx, page.camera, views.reference, {positions: reference, springs: page.springs, pinned},
               {...options, rings: []});
@@ -540,6 +551,7 @@ window.springlab = {
   page,
   ready: createSpringlab().then(start).then(() => true),
   frameStats,
+  draw,
   resetFrames: () => { page.frames = []; },
   particleOnScreen: i => {
     const positions = page.lab.positions(false);
