@@ -311,7 +311,7 @@ function showFields() {
     row.dataset.key = field.key;
     row.title = `${field.meaning}${field.allowed ? `\nallowed: ${field.allowed}` : ''}`;
     const name = document.createElement('label');
-    name.className = 'name';
+    name.className = field.type === 'bool' ? 'check' : 'name';
     const error = document.createElement('div');
     error.className = 'error';
     error.hidden = true;
