@@ -3,10 +3,17 @@
 #include "lab_testing.hpp"
 #include "springlab/errors.hpp"
 #include "springlab/parameters.hpp"
+#include "springlab/real_text.hpp"
 #include "springlab/scene_file.hpp"
 #include "springlab/scene_text.hpp"
 
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <string>
+#include <vector>
 
 using namespace springlab;
 using namespace springlab::testing;
@@ -207,4 +214,38 @@ TEST_CASE("Messages quote a long text by its start and its length", "[core][scen
   for (int i = 0; i < 100; ++i)
     umlauts += "\xC3\xA4";
   CHECK(quoted_for_terminal(umlauts) == "\"" + umlauts.substr(0, 100) + "...\" (200 bytes)");
+}
+
+TEST_CASE("Messages write numbers as std::to_chars does, also where the library has no to_chars",
+          "[core][scene-input]") {
+  INFO(
+      "shortest_text_portable stands in for std::to_chars(double) where libc++ has none (the "
+      "page in a browser, viewer/web/): its text must be to_chars's, or the page's messages "
+      "would differ from the runner's");
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> values{0.0, -0.0, 0.01, 1e-6, 1e5, 123456.0, 1e21, 1e22, 5e-324, 9.81};
+  for (const double x : {-2.5, 0.3, 0.1 + 0.2, 1e300, -inf, inf, 12345678901234567890.0})
+    values.push_back(x);
+  values.push_back(std::numeric_limits<double>::max());
+  std::uint64_t bits = 0x9e3779b97f4a7c15;  // a fixed sequence of bit patterns (xorshift64)
+  for (int i = 0; i < 20000; ++i) {
+    bits ^= bits << 13;
+    bits ^= bits >> 7;
+    bits ^= bits << 17;
+    double x;
+    std::memcpy(&x, &bits, sizeof x);
+    if (std::isfinite(x)) values.push_back(x);
+    values.push_back(double(std::int64_t(bits % 2000001) - 1000000) / 1000.0);  // "-12.345"
+  }
+  int differing = 0;
+  std::string first;
+  for (const double x : values) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, x).ptr;
+    const std::string expected(text, end), written = shortest_text_portable(x);
+    if (written == expected) continue;
+    if (differing++ == 0) first = "to_chars wrote " + expected + ", the portable text " + written;
+  }
+  CAPTURE(values.size(), first);
+  CHECK(differing == 0);
 }
