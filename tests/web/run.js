@@ -233,6 +233,22 @@ async function dragging(page) {
   const v1 = await page.evaluate(() => Array.from(springlab.page.lab.velocities(false)).slice(2, 4));
   check(Math.abs(v1[0] - v0[0]) < 1e-12 && Math.abs(v1[1] - v0[1] - 2) < 1e-12,
         'shift+click pushes particle 1 by the panel\'s (0, 2) m/s', `velocity ${v0} -> ${v1}`);
+
+  // The keys: S steps once, Space runs and pauses, R resets (the desktop viewer's).
+  await page.evaluate(() => { document.activeElement.blur(); springlab.page.lab.setRunning(false); });
+  const k0 = await page.evaluate(() => springlab.page.lab.state().steps);
+  await page.keyboard.press('s');
+  const k1 = await page.evaluate(() => springlab.page.lab.state().steps);
+  await page.keyboard.press('Space');
+  const running = await page.evaluate(() => springlab.page.lab.running());
+  await page.keyboard.press('Space');
+  const paused = await page.evaluate(() => !springlab.page.lab.running());
+  const starts = await page.evaluate(() => springlab.page.lab.state().freshStarts);
+  await page.keyboard.press('r');
+  const reset = await page.evaluate(() => springlab.page.lab.state());
+  check(k1 === k0 + 1 && running && paused && reset.freshStarts === starts + 1 && reset.steps < k1 && reset.running,
+        'the keys: S takes one step, Space runs and pauses, R resets',
+        `steps ${k0} -> ${k1}, running ${running}, paused ${paused}, after R ${JSON.stringify(reset)}`);
 }
 
 async function divergence(page, opts, scratch) {
