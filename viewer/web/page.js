@@ -480,7 +480,9 @@ function setUpInput() {
     $('h-error').hidden = !message;
     $('h-error').textContent = message;
   });
-  $('scene').addEventListener('change', () => loadScene(() => page.lab.load($('scene').value)));
+  $('scene').addEventListener('change', () => {
+    if (!$('scene').selectedOptions[0].dataset.file) loadScene(() => page.lab.load($('scene').value));
+  });
   $('scene-file').addEventListener('change', async () => {
     const file = $('scene-file').files[0];
     if (!file) return;
@@ -505,8 +507,20 @@ function setUpInput() {
   window.addEventListener('resize', () => { resizeCanvases(); });
 }
 
+// The scene list shows what is loaded: a scene file as an entry of its own.
+function showSource() {
+  const select = $('scene'), source = page.lab.source();
+  for (const option of [...select.options]) if (option.dataset.file) option.remove();
+  if (page.module.sceneNames().includes(source)) { select.value = source; return; }
+  const option = new Option(`${source} (file)`, source);
+  option.dataset.file = '1';
+  select.add(option);
+  select.value = source;
+}
+
 function loadScene(load) {
   load();
+  showSource();
   page.camera.fitted = false;
   page.freshStarts = -1;
   page.frames = [];
@@ -538,6 +552,7 @@ async function start(module) {
     const response = await fetch(`scenes/${encodeURIComponent(file)}`);
     page.lab.loadText(file, response.ok ? await response.text() : '');
   }
+  showSource();
   if (query.get('paused') === '1') page.lab.setRunning(false);
   setUpInput();
   $('status').textContent = 'the kit’s C++ in WebAssembly, one thread';
