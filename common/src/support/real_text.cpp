@@ -105,11 +105,13 @@ std::string shortest_text_portable(double x) {
   if (exponent < 0)
     fixed += "0." + std::string(std::size_t(-exponent - 1), '0') + significant;
   else if (exponent + 1 >= count && exponent < 24) {
-    std::snprintf(text, sizeof text, "%.0f", x);  // a whole number: its exact digits, as to_chars
-    fixed = text;                                 // writes them
-  } else if (exponent + 1 >= count)               // longer than the scientific text anyway
+    // A whole number: to_chars writes its exact digits, as "%.0f" does.
+    std::snprintf(text, sizeof text, "%.0f", x);
+    fixed = text;
+  } else if (exponent + 1 >= count) {
+    // Longer than the scientific text in any case: its digits and zeros.
     fixed += significant + std::string(std::size_t(exponent + 1 - count), '0');
-  else
+  } else
     fixed += significant.substr(0, std::size_t(exponent + 1)) + "." +
              significant.substr(std::size_t(exponent + 1));
   return fixed.size() <= scientific.size() ? fixed : scientific;
