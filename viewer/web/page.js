@@ -148,9 +148,11 @@ function tick(now) {
     page.frames.push({interval, work, stepping: stepped, steps, dropped: lab.droppedSteps(),
                       simulated: state.time - before});
   if (page.frames.length > 5000) page.frames.shift();
-  if (now - page.panelShown > 100) {  // the read-outs ten times a second
+  if (now - page.panelShown > 100) {  // the other read-outs ten times a second
     page.panelShown = now;
     showPanel(state);
+  } else {
+    showTime(state);
   }
   requestAnimationFrame(tick);
 }
@@ -192,11 +194,16 @@ function number(x) {
   return Number.isFinite(x) ? Number(x.toPrecision(4)).toString() : String(x);
 }
 
+// The time, every frame: the same t as the plots' last point.
+function showTime(state) {
+  $('time').textContent = `t = ${state.time.toFixed(3)} s, ${state.steps} steps; ` +
+    `${state.particles} particles, ${state.springs} springs`;
+}
+
 function showPanel(state) {
   const lab = page.lab;
   $('run').textContent = state.running ? 'Pause' : 'Run';
-  $('time').textContent = `t = ${state.time.toFixed(3)} s, ${state.steps} steps; ` +
-    `${state.particles} particles, ${state.springs} springs`;
+  showTime(state);
   const info = lab.stepInfo();
   if ($('integrator').value !== info.integrator) $('integrator').value = info.integrator;
   if (document.activeElement !== $('h')) $('h').value = String(info.h);
