@@ -722,8 +722,45 @@ std::string force_sum_findings(const ForceSum& f, const SpringForce& spring,
          "several sums to something else: what one spring adds must stay when the next is added";
 }
 
+// Three copies of one particle stepped together with one constant acceleration must move alike:
+// "" when they do, else which of them the step left where they were. Run before the probes below,
+// whose one particle would hide a loop that misses some particles (or, looping over the rows,
+// reach past the last column).
+std::string particles_alike(const EulerStep& step, double h, const Vec2& A) {
+  const Vectors r0 = Vec2(1.0, 2.0).replicate(1, 3), v0 = Vec2(0.5, 0.25).replicate(1, 3);
+  Vectors r = r0, v = v0;
+  const auto constant = [&](const Vectors& at, const Vectors&) -> const Vectors& {
+    static Vectors a;
+    a = A.replicate(1, at.cols());
+    return a;
+  };
+  step(constant, h, r, v);
+  std::vector<std::string> still, moved;
+  for (int i = 0; i < 3; ++i)
+    (r.col(i) == r0.col(i) && v.col(i) == v0.col(i) ? still : moved).push_back(std::to_string(i));
+  const auto listed = [](const std::vector<std::string>& items) {
+    std::string text;
+    for (std::size_t i = 0; i < items.size(); ++i)
+      text += (i == 0 ? "" : i + 1 == items.size() ? " and " : ", ") + items[i];
+    return text;
+  };
+  if (!still.empty() && !moved.empty())
+    return "likely mistake: three particles with the same r0, v0 and a: the step moved particle" +
+           std::string(moved.size() == 1 ? " " : "s ") + listed(moved) + " and left particle" +
+           (still.size() == 1 ? " " : "s ") + listed(still) +
+           (still.size() == 1 ? " where it was" : " where they were") +
+           " (r1 = r0, v1 = v0): every particle takes the step, all r.cols() of them";
+  for (int i = 1; i < 3; ++i)
+    if ((r.col(i) - r.col(0)).norm() > 1e-12 || (v.col(i) - v.col(0)).norm() > 1e-12)
+      return "likely mistake: three particles with the same r0, v0 and a moved differently "
+             "(particle " +
+             std::to_string(i) + " unlike particle 0): every particle takes the same step";
+  return "";
+}
+
 std::string euler_step_findings(const EulerStep& step) {
   const double h = 0.1;
+  if (std::string alike = particles_alike(step, h, Vec2(0.3, -0.8)); !alike.empty()) return alike;
   int calls = 0;
   Vectors evaluated_r, evaluated_v;
   // a = A, constant: r1 = r0 + α h v0 + β h² A, v1 = v0 + γ h A + δ v0.
