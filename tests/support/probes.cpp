@@ -29,11 +29,7 @@ std::string likely_mistake(const std::vector<std::string>& said) {
 // What was measured when no concrete mistake reproduces it, or "": facts only, no cause, on the
 // line the reporter shows under "likely mistake: " (the line the mutants' judge reads).
 std::string measured(const std::vector<std::string>& said) {
-  if (said.empty()) return "";
-  std::string text = "likely mistake: ";
-  for (std::size_t i = 0; i < said.size(); ++i)
-    text += (i == 0 ? "" : "; ") + said[i];
-  return text;
+  return likely_mistake(said);  // the same line; the name says what its callers put on it
 }
 
 constexpr double close = 1e-7;  // relative agreement that counts as exact after a fit
