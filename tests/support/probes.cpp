@@ -173,6 +173,18 @@ const std::vector<SpringMistake>& spring_mistakes() {
        [](V d, double k, double l0) {
          return Vec2(-k * (d.squaredNorm() - l0) * d / d.squaredNorm());
        }},
+      {"the length is measured from the x components only, |x_p - x_q|, where (1.1) has the "
+       "whole length |r_p - r_q| (norm()): a spring that is not horizontal gets the wrong force",
+       [](V d, double k, double l0) {
+         const double length = std::abs(d.x());
+         return Vec2(-k * (length - l0) * d / length);
+       }},
+      {"the length is measured from the y components only, |y_p - y_q|, where (1.1) has the "
+       "whole length |r_p - r_q| (norm()): a spring that is not vertical gets the wrong force",
+       [](V d, double k, double l0) {
+         const double length = std::abs(d.y());
+         return Vec2(-k * (length - l0) * d / length);
+       }},
       {"the length |r_p - r_q| is rounded to a float (about 7 digits): keep it a double",
        [](V d, double k, double l0) {
          const double length = double(float(d.norm()));
@@ -233,7 +245,7 @@ std::string spring_force_findings(const SpringForce& f) {
   const double k = 20.0, rest = 1.0;
   const Vec2 r_q(0.4, -0.7);
   // Across the spring: the force must lie along r_q - r_p.
-  double worst_across = 0.0, angle = 0.0;
+  double worst_across = 0.0, worst_size = 0.0, angle = 0.0;
   bool finite = true;
   for (const double degrees : {0.0, 37.0, 90.0, 200.0, -135.0})
     for (const double ratio : {0.6, 1.3, 2.5}) {
@@ -244,13 +256,16 @@ std::string spring_force_findings(const SpringForce& f) {
       const double across = got.x() * towards_q.y() - got.y() * towards_q.x();
       if (std::abs(across) > worst_across) {
         worst_across = std::abs(across);
+        worst_size = got.norm();
         angle = std::atan2(across, got.dot(towards_q)) * 180.0 / std::numbers::pi;
       }
     }
   if (!finite)
     return "likely mistake: the force is not a finite number for some springs of length between "
            "0.6 and 2.5 l0: a division by zero or a square root of a negative number?";
-  if (worst_across > 1e-9 * k) {
+  // Across by more than rounding: a force of 1e17 N (a length near 0 divided by) has rounding
+  // of its own far above 1e-9 k, and is along the spring all the same.
+  if (worst_across > 1e-9 * k && worst_across > 1e-9 * worst_size) {
     std::ostringstream out;
     out << "likely mistake: the force is not along the spring: it makes an angle of up to "
         << number(std::abs(angle)) << " degrees with r_q - r_p on the springs tried, and (1.1) "

@@ -172,7 +172,9 @@ int run(const std::string& name, const std::string& worker, const std::string& l
   if (memory) worker_record += "memory " + std::to_string(resident_mb) + "\n";
   if (replay_failure()) worker_record += "stopped " + *replay_failure() + "\n";
   if (open_when_stopped() != nullptr)
-    worker_record += "in " + std::string(open_when_stopped()) + "\n";
+    worker_record +=
+        "in " + std::string(open_when_stopped()) + "\n" +
+        (inputs_when_stopped().empty() ? "" : "inputs " + inputs_when_stopped() + "\n");
   const TestOutcome& outcome = test_outcome();
   const bool passed = outcome.cases_run == 1 && outcome.passed() && complete && WIFEXITED(status) &&
                       WEXITSTATUS(status) == 0;

@@ -2,6 +2,12 @@
 
 #include "springlab/errors.hpp"
 
+#include <cxxabi.h>
+
+#include <cstdlib>
+#include <memory>
+#include <typeinfo>
+
 namespace springlab::grading {
 namespace {
 
@@ -9,7 +15,19 @@ const Implementation* submission = nullptr;
 TranscriptWriter* out = nullptr;
 std::exception_ptr model_exception;  // what the model last threw into the submission's code
 
-// Writes down how the exception being handled left the submission's function.
+// The type of the exception being handled, as C++ spells it ("std::length_error").
+std::string current_type_name() {
+  const std::type_info* type = abi::__cxa_current_exception_type();
+  if (type == nullptr) return "";
+  int status = 0;
+  const std::unique_ptr<char, void (*)(void*)> name(
+      abi::__cxa_demangle(type->name(), nullptr, nullptr, &status), &std::free);
+  return status == 0 && name ? name.get() : type->name();
+}
+
+// Writes down how the exception being handled left the submission's function. A standard
+// exception's message is its type's name, a line break, then what(): the harness throws the
+// same type again where it can, and names it where it cannot (replayer.cpp).
 void write_thrown() {
   const std::exception_ptr thrown = std::current_exception();
   out->event(Event::thrown);
@@ -23,7 +41,7 @@ void write_thrown() {
   } catch (const StepFailed& e) {
     kind = std::uint8_t(Thrown::step_failed), message = e.what();
   } catch (const std::exception& e) {
-    kind = std::uint8_t(Thrown::standard), message = e.what();
+    kind = std::uint8_t(Thrown::standard), message = current_type_name() + "\n" + e.what();
   } catch (...) {
   }
   if (thrown == model_exception) kind = std::uint8_t(Thrown::model);

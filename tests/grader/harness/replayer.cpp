@@ -3,6 +3,9 @@
 #include "springlab/errors.hpp"
 
 #include <chrono>
+#include <new>
+#include <stdexcept>
+#include <typeinfo>
 
 namespace springlab::grading {
 namespace {
@@ -12,6 +15,8 @@ std::optional<std::string> failure;
 long calls = 0;                      // replayed so far, to say which one failed
 const char* open_call = nullptr;     // the function whose answer is awaited
 const char* open_at_stop = nullptr;  // the one that was awaited when the replay stopped
+std::string open_inputs;             // the awaited call's inputs in words ("rows = 1, cols = 2")
+std::string inputs_at_stop;          // those of the call awaited when the replay stopped
 std::chrono::steady_clock::time_point waiting_since;
 
 // Something for Catch2 to report as an unknown exception, as the worker's was.
@@ -33,7 +38,7 @@ const char* name_of(Function f) {
 }
 
 [[noreturn]] void stop(const std::string& why) {
-  if (open_at_stop == nullptr) open_at_stop = open_call;
+  if (open_at_stop == nullptr) open_at_stop = open_call, inputs_at_stop = open_inputs;
   give_up(why);
   throw ReplayStopped(why);
 }
@@ -53,8 +58,28 @@ Event next(std::initializer_list<Event> want) {
   stop("the code's answers do not fit this test (event " + std::to_string(int(e)) + ")");
 }
 
-// `function`: the task function that threw, named in a standard exception's message, since the
-// test that catches it sees only the message.
+// The standard exception `type` (as C++ spells it) with `message`, thrown again as that type
+// where it is one of the standard library's with a message, so that the test sees the type the
+// submission threw; any other type is a std::runtime_error whose message names it.
+[[noreturn]] void throw_standard(const std::string& type, const std::string& message) {
+  if (type == "std::out_of_range") throw std::out_of_range(message);
+  if (type == "std::length_error") throw std::length_error(message);
+  if (type == "std::invalid_argument") throw std::invalid_argument(message);
+  if (type == "std::domain_error") throw std::domain_error(message);
+  if (type == "std::logic_error") throw std::logic_error(message);
+  if (type == "std::range_error") throw std::range_error(message);
+  if (type == "std::overflow_error") throw std::overflow_error(message);
+  if (type == "std::underflow_error") throw std::underflow_error(message);
+  if (type == "std::runtime_error") throw std::runtime_error(message);
+  if (type == "std::bad_alloc")
+    throw std::runtime_error(
+        message +
+        " (a std::bad_alloc: out of memory, or a size below zero turned into a huge one?)");
+  throw std::runtime_error(message + (type.empty() ? "" : " (an exception of type " + type + ")"));
+}
+
+// `function`: the task function that threw, named with its inputs in a standard exception's
+// message, since the test that catches it sees only the message.
 [[noreturn]] void rethrow_relayed(const std::exception_ptr& model_exception, const char* function) {
   const auto kind = Thrown(in->byte());
   const int task = int(in->integer());
@@ -67,8 +92,16 @@ Event next(std::initializer_list<Event> want) {
     case Thrown::model:
       if (model_exception) std::rethrow_exception(model_exception);
       stop("the code says it passed on an error of the model, but the model raised none");
-    case Thrown::standard:
-      throw std::runtime_error("your " + std::string(function) + " threw '" + message + "'");
+    case Thrown::standard: {
+      // "TYPE\nWHAT" (recorder.cpp); a message without the line break is all what().
+      const auto line_break = message.find('\n');
+      const std::string type = line_break == std::string::npos ? "" : message.substr(0, line_break);
+      const std::string what =
+          line_break == std::string::npos ? message : message.substr(line_break + 1);
+      throw_standard(type, "your " + std::string(function) +
+                               (open_inputs.empty() ? "" : " (called with " + open_inputs + ")") +
+                               " threw '" + what + "'");
+    }
     case Thrown::other:
       throw ForeignException{};
   }
@@ -78,12 +111,14 @@ Event next(std::initializer_list<Event> want) {
 // Replays one call: its inputs' hash must match; callbacks are run on the harness's own model
 // and must agree with the worker's; then the outputs are read into `outputs`.
 // `columns`: how many particles the model's state holds (the step's own number).
+// `described`: the inputs in words, for the feedback should the call crash or throw.
 template <class Read>
-void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model, Read read,
-            Eigen::Index columns = -1) {
+void replay(Function f, std::uint64_t inputs, std::string described,
+            const AccelerationFunction* model, Read read, Eigen::Index columns = -1) {
   if (failure) throw ReplayStopped(*failure);
   ++calls;
   open_call = name_of(f);
+  open_inputs = std::move(described);
   waiting_since = std::chrono::steady_clock::now();
   struct Closed {
     ~Closed() { open_call = nullptr; }
@@ -125,6 +160,15 @@ void replay(Function f, std::uint64_t inputs, const AccelerationFunction* model,
   }
 }
 
+// Inputs in words, for the feedback: "r: 2x9" and the like.
+std::string sized(const char* name, const Vectors& x) {
+  return std::string(name) + ": 2x" + std::to_string(x.cols());
+}
+
+std::string grid(int rows, int cols) {
+  return "rows = " + std::to_string(rows) + ", cols = " + std::to_string(cols);
+}
+
 Vec2 vec2() {
   Vec2 x;
   in->get(x);
@@ -139,19 +183,20 @@ std::vector<Spring> springs() {
 
 Vec2 spring_force(const Vec2& r_p, const Vec2& r_q, double k, double rest_length) {
   Vec2 f;
-  replay(Function::spring_force, hash_of(r_p, r_q, k, rest_length), nullptr, [&] { f = vec2(); });
+  replay(Function::spring_force, hash_of(r_p, r_q, k, rest_length), "", nullptr,
+         [&] { f = vec2(); });
   return f;
 }
 
 Vec2 damper_force(const Vec2& v_p, const Vec2& v_q, double b) {
   Vec2 f;
-  replay(Function::damper_force, hash_of(v_p, v_q, b), nullptr, [&] { f = vec2(); });
+  replay(Function::damper_force, hash_of(v_p, v_q, b), "", nullptr, [&] { f = vec2(); });
   return f;
 }
 
 void explicit_euler_step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v) {
   replay(
-      Function::explicit_euler_step, hash_of(h, r, v), &a,
+      Function::explicit_euler_step, hash_of(h, r, v), sized("r and v", r), &a,
       [&] {
         in->get(r, r.cols());
         in->get(v, v.cols());
@@ -161,26 +206,29 @@ void explicit_euler_step(const AccelerationFunction& a, double h, Vectors& r, Ve
 
 std::vector<Spring> structural_springs(int rows, int cols, const SpringFamilyParameters& p) {
   std::vector<Spring> s;
-  replay(Function::structural_springs, hash_of(rows, cols, p), nullptr, [&] { s = springs(); });
+  replay(Function::structural_springs, hash_of(rows, cols, p), grid(rows, cols), nullptr,
+         [&] { s = springs(); });
   return s;
 }
 
 void accumulate_spring_forces(const std::vector<Spring>& s, const Vectors& r, const Vectors& v,
                               Vectors& force) {
-  replay(Function::accumulate_spring_forces, hash_of(s, r, v, force), nullptr,
+  replay(Function::accumulate_spring_forces, hash_of(s, r, v, force),
+         std::to_string(s.size()) + " springs, " + sized("r, v and force", r), nullptr,
          [&] { in->get(force, force.cols()); });
 }
 
 std::vector<Spring> shear_springs(int rows, int cols, const SpringFamilyParameters& p) {
   std::vector<Spring> s;
-  replay(Function::shear_springs, hash_of(rows, cols, p), nullptr, [&] { s = springs(); });
+  replay(Function::shear_springs, hash_of(rows, cols, p), grid(rows, cols), nullptr,
+         [&] { s = springs(); });
   return s;
 }
 
 void verlet_step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v,
                  VerletHistory& history) {
   replay(
-      Function::verlet_step, hash_of(h, r, v, history), &a,
+      Function::verlet_step, hash_of(h, r, v, history), sized("r and v", r), &a,
       [&] {
         in->get(r, r.cols());
         in->get(v, v.cols());
@@ -191,23 +239,27 @@ void verlet_step(const AccelerationFunction& a, double h, Vectors& r, Vectors& v
 
 std::vector<Spring> bend_springs(int rows, int cols, const SpringFamilyParameters& p) {
   std::vector<Spring> s;
-  replay(Function::bend_springs, hash_of(rows, cols, p), nullptr, [&] { s = springs(); });
+  replay(Function::bend_springs, hash_of(rows, cols, p), grid(rows, cols), nullptr,
+         [&] { s = springs(); });
   return s;
 }
 
 void add_gravity(const Eigen::VectorXd& mass, const Vec2& g, Vectors& force) {
-  replay(Function::add_gravity, hash_of(mass, g, force), nullptr,
+  replay(Function::add_gravity, hash_of(mass, g, force),
+         "mass: " + std::to_string(mass.size()) + " entries, " + sized("force", force), nullptr,
          [&] { in->get(force, force.cols()); });
 }
 
 void add_wind(const WindField&, double t, const Vectors& r, const Vectors& v, Vectors& force) {
-  replay(Function::add_wind, hash_of(t, r, v, force), nullptr,
+  replay(Function::add_wind, hash_of(t, r, v, force), sized("r, v and force", r), nullptr,
          [&] { in->get(force, force.cols()); });
 }
 
 void hold_pinned(const std::vector<bool>& pinned, Vectors& acceleration) {
-  replay(Function::hold_pinned, hash_of(pinned, acceleration), nullptr,
-         [&] { in->get(acceleration, acceleration.cols()); });
+  replay(Function::hold_pinned, hash_of(pinned, acceleration),
+         "pinned: " + std::to_string(pinned.size()) + " entries, " +
+             sized("acceleration", acceleration),
+         nullptr, [&] { in->get(acceleration, acceleration.cols()); });
 }
 
 }  // namespace
@@ -235,6 +287,10 @@ const std::optional<std::string>& replay_failure() {
 
 const char* open_when_stopped() {
   return open_at_stop;
+}
+
+const std::string& inputs_when_stopped() {
+  return inputs_at_stop;
 }
 
 std::optional<Awaited> awaited() {

@@ -31,4 +31,7 @@ std::optional<Awaited> awaited();
 /// inside it), or null.
 const char* open_when_stopped();
 
+/// That function's inputs in words ("rows = 1, cols = 2", "r and v: 2x9"), or "".
+const std::string& inputs_when_stopped();
+
 }  // namespace springlab::grading

@@ -672,6 +672,7 @@ class Grader::Pipeline {
       t.message = g_.settings_.raw ? v.message : without_raw_lines(v.message);
       t.printed = o.output;
       t.printed_bytes = o.output_bytes;
+      if (!g_.settings_.raw) without_assertion_lines(t);
       t.seconds = o.wall_seconds;
       // A crash, or a failed check (an index out of Eigen's range, say), is run again with the
       // sanitizers, which can say what corrupted memory first.
@@ -724,14 +725,21 @@ class Grader::Pipeline {
         const bool explained =
             v.message.rfind("memory error", 0) == 0 ||
             v.message.rfind("undefined behaviour", 0) == 0 ||
-            (v.message.rfind("a check failed", 0) == 0 && t.message.rfind("crashed: ", 0) == 0);
+            (v.message.rfind("a check failed", 0) == 0 &&
+             (t.message.rfind("crashed: ", 0) == 0 ||
+              v.message.find(" (tasks/task") != std::string::npos));  // now with the line
+        // A check that failed in both runs is said once, as the sanitized run names its line.
+        const bool same_check =
+            t.message.rfind("a check failed", 0) == 0 && v.message.rfind("a check failed", 0) == 0;
         if (!v.passed && explained) {
-          t.message = t.message.substr(0, t.message.find('\n')) +
-                      "; run again with the sanitizers, which check every memory access: " +
+          t.message = (same_check ? ""
+                                  : t.message.substr(0, t.message.find('\n')) +
+                                        "; run again with the sanitizers, which check every "
+                                        "memory access: ") +
                       (g_.settings_.raw ? v.message : without_raw_lines(v.message));
           t.printed = o.output;
           t.printed_bytes = o.output_bytes;
-          if (!g_.settings_.raw) without_sanitizer_report(t);
+          if (!g_.settings_.raw) without_sanitizer_report(t), without_assertion_lines(t);
         }
         return settle(b);
       }
@@ -762,6 +770,24 @@ class Grader::Pipeline {
     }
     t.printed.resize(at);
     t.printed_bytes = std::min(t.printed_bytes, at);
+  }
+
+  // A failed assert()'s own line ("worker: /usr/include/eigen3/...: Assertion `...' failed.")
+  // is for instructors: the message has already said what the check was, in a student's words.
+  static void without_assertion_lines(TestResult& t) {
+    if (t.message.rfind("a check failed", 0) != 0) return;
+    std::string kept;
+    std::size_t start = 0;
+    while (start < t.printed.size()) {
+      const auto end = std::min(t.printed.find('\n', start), t.printed.size());
+      const std::string line = t.printed.substr(start, end - start + 1);
+      if (line.find(": Assertion `") == std::string::npos &&
+          line.rfind("AddressSanitizer:DEADLYSIGNAL", 0) != 0)
+        kept += line;
+      start = end + 1;
+    }
+    t.printed_bytes -= std::min(t.printed_bytes, t.printed.size() - kept.size());
+    t.printed = kept;
   }
 
   // A test process that did not start, or whose sandbox could not be made: the harness never

@@ -68,10 +68,15 @@ std::string worker_ending_where(const std::string& record, const std::string& ou
                                 const Limits& limits, const LimitsText& text) {
   const auto w = fields_of(record);
   std::string words = worker_ending(record, output, limits, text);
-  if (words.empty() || w.count("in") == 0 || words.rfind("timed out in ", 0) == 0 ||
-      words.find(w.at("in")) != std::string::npos)
+  if (words.empty() || w.count("in") == 0 || words.rfind("timed out in ", 0) == 0) return words;
+  const std::string inputs = w.count("inputs") > 0 ? w.at("inputs") : "";
+  if (words.find(w.at("in")) != std::string::npos) {  // named already, by the sanitizer's stack
+    if (!inputs.empty())
+      words.insert(std::min(words.find('\n'), words.size()), "; it was called with " + inputs);
     return words;
-  const std::string function = w.at("in");
+  }
+  // "hold_pinned (called with pinned: 9 entries, acceleration: 2x9)": the sizes it was given.
+  const std::string function = w.at("in") + (inputs.empty() ? "" : " (called with " + inputs + ")");
   if (words.rfind("a check failed", 0) == 0 || words.rfind("crashed", 0) == 0 ||
       words.rfind("memory error", 0) == 0 || words.rfind("exited before", 0) == 0 ||
       words.rfind("undefined behaviour", 0) == 0) {

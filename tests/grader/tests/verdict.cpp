@@ -150,6 +150,55 @@ TEST_CASE("Sanitizer reports become sentences naming the student's function and 
   CHECK(explain_sanitizer_report("nothing wrong here\n").empty());
 }
 
+TEST_CASE("A failed Eigen check is said in a student's words, without Eigen's text or paths",
+          "[verdict][sanitizer]") {
+  // The line assert() prints, with the sanitizer's stack after it (issue 38).
+  const std::string stack =
+      "    #3 0x7f in springlab::submission::hold_pinned(std::vector<bool> const&, "
+      "Eigen::Matrix<double, 2, -1, 0, 2, -1>&) /w/1-a/tasks/task5_fabric/pins.cpp:8:5\n";
+  const auto failed = [&stack](const std::string& file, const std::string& function,
+                               const std::string& condition) {
+    return "worker: /usr/include/eigen3/Eigen/src/Core/" + file + ": " + function +
+           ": Assertion `" + condition + "' failed.\n" + stack;
+  };
+  const std::string block_condition =
+      "(i>=0) && ( ((BlockRows==1) && (BlockCols==XprType::ColsAtCompileTime) && "
+      "i<xpr.rows()) ||((BlockRows==XprType::RowsAtCompileTime) && (BlockCols==1) && "
+      "i<xpr.cols()))";
+  const std::string column = explain_sanitizer_report(failed(
+      "Block.h:120",
+      "Eigen::Block<XprType, BlockRows, BlockCols, InnerPanel>::Block(XprType&, Eigen::Index) "
+      "[with XprType = Eigen::Matrix<double, 2, -1>; int BlockRows = 2; int BlockCols = 1; bool "
+      "InnerPanel = true; Eigen::Index = long int]",
+      block_condition));
+  CHECK_THAT(column, lab_catch::StartsWith("a check failed in hold_pinned "
+                                           "(tasks/task5_fabric/pins.cpp, line 8): an index out "
+                                           "of range: .col(j) was given a column"));
+  const std::string row = explain_sanitizer_report(failed(
+      "Block.h:120",
+      "Eigen::Block<XprType, BlockRows, BlockCols, InnerPanel>::Block(XprType&, Eigen::Index) "
+      "[with XprType = Eigen::Matrix<double, 2, -1>; int BlockRows = 1; int BlockCols = -1; bool "
+      "InnerPanel = false; Eigen::Index = long int]",
+      block_condition));
+  CHECK_THAT(row, lab_catch::Contains(".row(i) was given a row the matrix does not have"));
+  const std::string element = explain_sanitizer_report(
+      failed("DenseCoeffsBase.h:425", "Scalar& operator()(Eigen::Index)",
+             "index >= 0 && index < size()"));
+  CHECK_THAT(element, lab_catch::Contains("an element [i] or (i) outside the vector"));
+  const std::string sizes = explain_sanitizer_report(
+      failed("CwiseBinaryOp.h:116", "CwiseBinaryOp(const Lhs&, const Rhs&)",
+             "aLhs.rows() == aRhs.rows() && aLhs.cols() == aRhs.cols()"));
+  CHECK_THAT(sizes, lab_catch::Contains("two matrices of different sizes"));
+  for (const std::string& words : {column, row, element, sizes}) {
+    CHECK_THAT(words, !lab_catch::Contains("xpr") && !lab_catch::Contains("eigen3") &&
+                          !lab_catch::Contains("Assertion") && !lab_catch::Contains("aLhs"));
+  }
+  // A student's own assert() keeps its condition: it is theirs.
+  CHECK(explain_sanitizer_report("worker: /w/tasks/task1_two_masses/a.cpp:9: void f(): "
+                                 "Assertion `length > 0' failed.\n") ==
+        "a check failed: an assert() failed: length > 0");
+}
+
 TEST_CASE("A failure's Catch2 form (raw lines) is left out unless an instructor asks for it",
           "[verdict]") {
   const std::string message =
