@@ -181,9 +181,8 @@ TEST_CASE("A failed Eigen check is said in a student's words, without Eigen's te
       "InnerPanel = false; Eigen::Index = long int]",
       block_condition));
   CHECK_THAT(row, lab_catch::Contains(".row(i) was given a row the matrix does not have"));
-  const std::string element = explain_sanitizer_report(
-      failed("DenseCoeffsBase.h:425", "Scalar& operator()(Eigen::Index)",
-             "index >= 0 && index < size()"));
+  const std::string element = explain_sanitizer_report(failed(
+      "DenseCoeffsBase.h:425", "Scalar& operator()(Eigen::Index)", "index >= 0 && index < size()"));
   CHECK_THAT(element, lab_catch::Contains("an element [i] or (i) outside the vector"));
   const std::string sizes = explain_sanitizer_report(
       failed("CwiseBinaryOp.h:116", "CwiseBinaryOp(const Lhs&, const Rhs&)",
