@@ -116,9 +116,12 @@ std::string seconds_text(double s) {
   return out.str();
 }
 
-// Why a test that did not finish failed, in the grader's words where it has the same facts.
-std::string ending_text(const Ended& e) {
+// Why a test that did not finish failed, in the grader's words where it has the same facts;
+// `printed`: what its code printed, which holds a failed assert()'s line.
+std::string ending_text(const Ended& e, const std::string& printed) {
   if (!e.started) return "the check could not start the test";
+  if (const std::string check = assertion_text(printed); !check.empty() && !e.timed_out)
+    return "a check failed: " + check;
   if (e.timed_out) return timed_out_text(seconds_text(time_limit), seconds_text(time_limit));
 #ifdef SIGXFSZ
   if (e.signal == SIGXFSZ) return output_limit_text(long(output_limit_mb));
@@ -146,7 +149,12 @@ TestResult run_test(const TestInfo& test, int index, int task, const fs::path& w
     t.message = without_raw_lines(newline == std::string::npos ? "" : verdict.substr(newline + 1));
     if (!t.passed && t.message.empty()) t.message = "no check ran";
   } else {
-    t.message = ending_text(e);
+    t.message = ending_text(e, printed);
+    if (t.message.rfind("a check failed", 0) == 0) {
+      const std::string kept = without_assertion_lines(t.printed);
+      t.printed_bytes -= t.printed.size() - kept.size();
+      t.printed = kept;
+    }
   }
   return t;
 }
@@ -160,7 +168,7 @@ std::vector<TestInfo> all_tests(const fs::path& points, const fs::path& work) {
     const Ended e = run({p.program, "--springlab-list", list.string()}, work / "list.out");
     if (e.exit_status != 0)
       throw std::runtime_error("cannot list the tests of task " + std::to_string(task) + " (" +
-                               p.program + "): " + ending_text(e));
+                               p.program + "): " + ending_text(e, ""));
     listing += read_file(list);
   }
   std::vector<TestInfo> tests = parse_test_list(listing);

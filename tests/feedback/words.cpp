@@ -181,6 +181,85 @@ std::string signal_text(int signal) {
   }
 }
 
+namespace {
+
+bool has(const std::string& text, const char* part) {
+  return text.find(part) != std::string::npos;
+}
+
+// What a failed assert() says, in a student's words (issue 38: no library text, no paths), from
+// its `line` (the whole line, which names the file and function) and its `condition`. Eigen's
+// checks are told by their file and condition, each the one check of its kind in Eigen 3.4 and 5.
+std::string assertion_words(const std::string& line, const std::string& condition) {
+  if (has(line, "Block.h") && has(condition, "i<xpr.cols()")) {
+    // Block(xpr, i): one column (.col(j)) or one row (.row(i)) of a matrix.
+    const bool row = has(line, "BlockRows = 1;") && !has(line, "BlockCols = 1;");
+    return row ? "an index out of range: .row(i) was given a row the matrix does not have (Vec2 "
+                 "and Vectors have rows 0 and 1 only, x and y)"
+               : "an index out of range: .col(j) was given a column the matrix does not have (a "
+                 "matrix with n columns has columns 0 to n-1: one per particle in Vectors)";
+  }
+  if (has(line, "Block.h"))
+    return "an index out of range: a block (.block, .segment, .head, .tail, .leftCols, "
+           ".middleCols ...) reaches outside the matrix";
+  if (has(line, "DenseCoeffsBase.h") && has(condition, "row >= 0"))
+    return "an index out of range: an element (i, j) outside the matrix (rows 0 to rows()-1, "
+           "columns 0 to cols()-1)";
+  if (has(line, "DenseCoeffsBase.h"))
+    return "an index out of range: an element [i] or (i) outside the vector (0 to size()-1)";
+  if (has(line, "CwiseBinaryOp.h"))
+    return "two matrices of different sizes were combined (+, -, cwiseProduct ...): both sides "
+           "must have the same rows and columns";
+  if (has(line, "Product.h") || has(condition, "lhs.cols() == rhs.rows()"))
+    return "a product of matrices whose sizes do not fit (the left one's columns must equal the "
+           "right one's rows)";
+  if (has(line, "AssignEvaluator.h") || has(line, "PlainObjectBase.h") || has(line, "Assign.h") ||
+      has(line, "DenseBase.h"))
+    return "a matrix was given a value of another size (a Vec2 or a block assigned from a matrix "
+           "of other rows or columns?)";
+  if (has(line, "eigen3") || has(line, "Eigen/"))
+    return "one of Eigen's checks failed: an index or a size that does not fit the matrix";
+  // The student's own assert(): their condition is theirs to read.
+  return "an assert() failed: " + condition;
+}
+
+}  // namespace
+
+std::string assertion_text(const std::string& output) {
+  // glibc: "PROGRAM: FILE:LINE: FUNCTION: Assertion `CONDITION' failed."
+  if (const auto at = output.find(": Assertion `"); at != std::string::npos) {
+    const auto start = output.rfind('\n', at) + 1;  // npos + 1 == 0 on the first line
+    const std::string line = output.substr(start, output.find('\n', at) - start);
+    const auto from = line.find(": Assertion `") + 13;
+    return assertion_words(line, line.substr(from, line.rfind("' failed") - from));
+  }
+  // macOS: "Assertion failed: (CONDITION), function F, file FILE, line N."; Windows:
+  // "Assertion failed: CONDITION, file FILE, line N".
+  if (const auto at = output.find("Assertion failed: "); at != std::string::npos) {
+    const std::string line = output.substr(at, output.find('\n', at) - at);
+    std::string condition = line.substr(18, line.find(", f") - 18);
+    if (condition.size() > 1 && condition.front() == '(' && condition.back() == ')')
+      condition = condition.substr(1, condition.size() - 2);
+    return assertion_words(line, condition);
+  }
+  return "";
+}
+
+std::string without_assertion_lines(const std::string& printed) {
+  std::string kept;
+  std::size_t start = 0;
+  while (start < printed.size()) {
+    const auto end = std::min(printed.find('\n', start), printed.size());
+    const std::string line = printed.substr(start, end - start + 1);
+    if (line.find(": Assertion `") == std::string::npos &&
+        line.rfind("Assertion failed: ", 0) == std::string::npos &&
+        line.rfind("AddressSanitizer:DEADLYSIGNAL", 0) != 0)
+      kept += line;
+    start = end + 1;
+  }
+  return kept;
+}
+
 std::string without_raw_lines(const std::string& message) {
   std::string kept;
   std::size_t start = 0;

@@ -48,6 +48,14 @@ std::string output_limit_text(long megabytes);
 /// "exited before the test finished (exit status 1): does your code call exit(), ...?".
 std::string early_exit_text(const std::string& status);
 
+/// A failed assert() in `output` (Eigen's index and size checks, or the student's own), in a
+/// student's words: which check, without the library's text or paths; "" when there is none.
+std::string assertion_text(const std::string& output);
+
+/// What a test's code printed without a failed assert()'s own line (and AddressSanitizer's note
+/// of the signal it raised): the explanation has said it in a student's words.
+std::string without_assertion_lines(const std::string& printed);
+
 /// A failure's explanation without Catch2's own form of it (its "raw: " lines: file, line and
 /// expression), which only whoever asks for it sees.
 std::string without_raw_lines(const std::string& message);

@@ -4,6 +4,7 @@
 #include "policy.hpp"
 #include "reports.hpp"
 #include "verdict.hpp"
+#include "words.hpp"
 
 #include <sys/statvfs.h>
 #include <unistd.h>
@@ -776,16 +777,7 @@ class Grader::Pipeline {
   // is for instructors: the message has already said what the check was, in a student's words.
   static void without_assertion_lines(TestResult& t) {
     if (t.message.rfind("a check failed", 0) != 0) return;
-    std::string kept;
-    std::size_t start = 0;
-    while (start < t.printed.size()) {
-      const auto end = std::min(t.printed.find('\n', start), t.printed.size());
-      const std::string line = t.printed.substr(start, end - start + 1);
-      if (line.find(": Assertion `") == std::string::npos &&
-          line.rfind("AddressSanitizer:DEADLYSIGNAL", 0) != 0)
-        kept += line;
-      start = end + 1;
-    }
+    const std::string kept = grader::without_assertion_lines(t.printed);
     t.printed_bytes -= std::min(t.printed_bytes, t.printed.size() - kept.size());
     t.printed = kept;
   }

@@ -1,5 +1,7 @@
 #include "sanitizer.hpp"
 
+#include "words.hpp"
+
 #include <sstream>
 #include <vector>
 
@@ -74,47 +76,6 @@ std::string line_after(const std::string& text, std::size_t at) {
   return text.substr(at, text.find('\n', at) - at);
 }
 
-bool has(const std::string& text, const char* part) {
-  return text.find(part) != std::string::npos;
-}
-
-// What a failed assert() line says, in a student's words (issue 38: no library text, no paths).
-// The line is "PROGRAM: FILE:LINE: FUNCTION: Assertion `CONDITION' failed."; Eigen's checks are
-// told by their file and condition, each the one check of its kind in Eigen 3.4 and 5.
-std::string assertion_words(const std::string& line) {
-  const std::string condition = line.substr(line.find("Assertion `") + 11);
-  if (has(line, "/Block.h:") && has(condition, "i<xpr.cols()")) {
-    // Block(xpr, i): one column (.col(j)) or one row (.row(i)) of a matrix.
-    const bool row = has(line, "BlockRows = 1;") && !has(line, "BlockCols = 1;");
-    return row ? "an index out of range: .row(i) was given a row the matrix does not have (Vec2 "
-                 "and Vectors have rows 0 and 1 only, x and y)"
-               : "an index out of range: .col(j) was given a column the matrix does not have (a "
-                 "matrix with n columns has columns 0 to n-1: one per particle in Vectors)";
-  }
-  if (has(line, "/Block.h:"))
-    return "an index out of range: a block (.block, .segment, .head, .tail, .leftCols, "
-           ".middleCols ...) reaches outside the matrix";
-  if (has(line, "/DenseCoeffsBase.h:") && has(condition, "row >= 0"))
-    return "an index out of range: an element (i, j) outside the matrix (rows 0 to rows()-1, "
-           "columns 0 to cols()-1)";
-  if (has(line, "/DenseCoeffsBase.h:"))
-    return "an index out of range: an element [i] or (i) outside the vector (0 to size()-1)";
-  if (has(line, "/CwiseBinaryOp.h:"))
-    return "two matrices of different sizes were combined (+, -, cwiseProduct ...): both sides "
-           "must have the same rows and columns";
-  if (has(line, "/Product.h:") || has(condition, "lhs.cols() == rhs.rows()"))
-    return "a product of matrices whose sizes do not fit (the left one's columns must equal the "
-           "right one's rows)";
-  if (has(line, "/AssignEvaluator.h:") || has(line, "/PlainObjectBase.h:") ||
-      has(line, "/Assign.h:") || has(line, "/DenseBase.h:"))
-    return "a matrix was given a value of another size (a Vec2 or a block assigned from a matrix "
-           "of other rows or columns?)";
-  if (has(line, "/eigen3/") || has(line, "/Eigen/"))
-    return "one of Eigen's checks failed: an index or a size that does not fit the matrix";
-  // The student's own assert(): their condition is theirs to read.
-  return "an assert() failed: " + condition.substr(0, condition.rfind("' failed"));
-}
-
 }  // namespace
 
 std::string explain_sanitizer_report(const std::string& output) {
@@ -126,10 +87,8 @@ std::string explain_sanitizer_report(const std::string& output) {
            line_after(output, at + 17);
   }
   // A failed assertion (Eigen's index and size checks), with the sanitizer's stack after it.
-  if (const auto at = output.find("Assertion `"); at != std::string::npos) {
-    const auto start = output.rfind('\n', at) + 1;  // npos + 1 == 0 on the first line
-    return "a check failed" + where(output) + ": " + assertion_words(line_after(output, start));
-  }
+  if (const std::string words = assertion_text(output); !words.empty())
+    return "a check failed" + where(output) + ": " + words;
   const std::string marker = "ERROR: AddressSanitizer: ";
   const auto at = output.find(marker);
   if (at == std::string::npos) return "";

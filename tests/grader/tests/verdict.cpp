@@ -3,6 +3,7 @@
 #include "verdict.hpp"
 #include "lab_catch.hpp"
 #include "sanitizer.hpp"
+#include "words.hpp"
 
 #include <csignal>
 
@@ -192,6 +193,17 @@ TEST_CASE("A failed Eigen check is said in a student's words, without Eigen's te
     CHECK_THAT(words, !lab_catch::Contains("xpr") && !lab_catch::Contains("eigen3") &&
                           !lab_catch::Contains("Assertion") && !lab_catch::Contains("aLhs"));
   }
+  // macOS's and Windows' assert() lines, as springlab-check reads them there.
+  CHECK_THAT(assertion_text("Assertion failed: (index >= 0 && index < size()), function "
+                            "operator(), file DenseCoeffsBase.h, line 410.\n"),
+             lab_catch::StartsWith("an index out of range: an element [i] or (i)"));
+  CHECK(assertion_text("Assertion failed: n > 0, file a.cpp, line 3\n") ==
+        "an assert() failed: n > 0");
+  CHECK(assertion_text("nothing failed\n").empty());
+  // The line itself leaves what the code printed; the code's own lines stay.
+  CHECK(without_assertion_lines("mine\nworker: /usr/include/eigen3/Eigen/src/Core/Block.h:120: "
+                                "f: Assertion `i<xpr.cols()' failed.\nAddressSanitizer:"
+                                "DEADLYSIGNAL\nalso mine\n") == "mine\nalso mine\n");
   // A student's own assert() keeps its condition: it is theirs.
   CHECK(explain_sanitizer_report("worker: /w/tasks/task1_two_masses/a.cpp:9: void f(): "
                                  "Assertion `length > 0' failed.\n") ==
