@@ -358,16 +358,30 @@ std::string damper_force_findings(const DamperForce& f) {
   if (offset.norm() > 1e-12)
     out << "likely mistake: with both velocities zero the damper force is (" << number(offset.x())
         << ", " << number(offset.y()) << ") N, not zero";
-  // Each block a multiple of b·I?
-  const auto multiple = [&](int column) -> std::optional<double> {
-    const Eigen::Matrix2d block = m.middleCols<2>(column);
-    const double c = block(0, 0);
-    if (std::abs(block(1, 1) - c) > 1e-9 || std::abs(block(0, 1)) > 1e-9 ||
-        std::abs(block(1, 0)) > 1e-9)
-      return std::nullopt;
-    return c / b;
+  // Each block a multiple of I, at b and at 2b: κ b (it grows with b), κ (it does not), or
+  // neither (a measurement, said as one). Each velocity's coefficient on its own: -b v_p - v_q
+  // (brackets left out) has one of each.
+  struct Coefficient {
+    double kappa;
+    int b_power;  // 1: κ b, 0: κ, -1: neither (κ is then the value at b)
   };
-  const auto on_p = multiple(0), on_q = multiple(2);
+  const auto coefficient = [&](int column) -> std::optional<Coefficient> {
+    const auto scalar = [column](const Eigen::Matrix<double, 2, 4>& at) -> std::optional<double> {
+      const Eigen::Matrix2d block = at.middleCols<2>(column);
+      const double c = block(0, 0);
+      if (std::abs(block(1, 1) - c) > 1e-9 || std::abs(block(0, 1)) > 1e-9 ||
+          std::abs(block(1, 0)) > 1e-9)
+        return std::nullopt;
+      return c;
+    };
+    const auto at_b = scalar(m), at_2b = scalar(m2);
+    if (!at_b || !at_2b) return std::nullopt;
+    if (std::abs(*at_2b - 2 * *at_b) <= 1e-9 * (1 + std::abs(*at_b)))
+      return Coefficient{*at_b / b, 1};
+    if (std::abs(*at_2b - *at_b) <= 1e-9 * (1 + std::abs(*at_b))) return Coefficient{*at_b, 0};
+    return Coefficient{*at_b, -1};
+  };
+  const auto on_p = coefficient(0), on_q = coefficient(2);
   if (!on_p || !on_q) {
     if (!out.str().empty()) return out.str();
     return "likely mistake: the damper force mixes or leaves out components: for v_p = (1, 0) it "
@@ -375,36 +389,51 @@ std::string damper_force_findings(const DamperForce& f) {
            number(m(0, 0)) + ", " + number(m(1, 0)) + ") N and for v_p = (0, 1) it is (" +
            number(m(0, 1)) + ", " + number(m(1, 1)) + ") N, where (1.2) gives (-b, 0) and (0, -b)";
   }
-  const double b_power = std::abs(m2.norm() - 2 * m.norm()) < 1e-9 * (1 + m.norm()) ? 1.0
-                         : std::abs(m2.norm() - m.norm()) < 1e-9 * (1 + m.norm())   ? 0.0
-                                                                                    : -1.0;
-  const auto term = [&](double c, const char* v) {
-    std::string text = std::abs(std::abs(c) - 1.0) < 1e-9 ? "" : number(std::abs(c)) + " ";
-    text += b_power == 1.0 ? "b " : "";
-    return (c < 0 ? "- " : "+ ") + text + v;
+  const auto is = [](const Coefficient& c, double kappa, int power) {
+    return c.b_power == power && std::abs(c.kappa - kappa) < 1e-9;
   };
-  if (std::abs(*on_p + 1.0) < 1e-9 && std::abs(*on_q - 1.0) < 1e-9 && b_power == 1.0 &&
-      out.str().empty())
-    return "";
+  if (is(*on_p, -1, 1) && is(*on_q, 1, 1) && out.str().empty()) return "";
+  if (on_p->b_power < 0 || on_q->b_power < 0) {
+    // Neither κ b nor κ: what was measured, at two values of b, and no more.
+    const auto at = [&](const Eigen::Matrix<double, 2, 4>& measured_map, double b_here) {
+      std::ostringstream law;
+      law << number(measured_map(0, 0)) << " v_p + " << number(measured_map(0, 2))
+          << " v_q at b = " << number(b_here);
+      return law.str();
+    };
+    if (!out.str().empty()) out << "; ";
+    out << "measured: the damper force is " << at(m, b) << " N·s/m and " << at(m2, 2 * b)
+        << " N·s/m, where (1.2) gives -b v_p + b v_q: look at how b enters damper_force";
+    return out.str();
+  }
+  const auto term = [](const Coefficient& c, const char* v) {
+    std::string text =
+        std::abs(std::abs(c.kappa) - 1.0) < 1e-9 ? "" : number(std::abs(c.kappa)) + " ";
+    text += c.b_power == 1 ? "b " : "";
+    return (c.kappa < 0 ? "- " : "+ ") + text + v;
+  };
   if (!out.str().empty()) out << "; ";
   std::string law;
-  if (std::abs(*on_p) > 1e-12) law += term(*on_p, "v_p");
-  if (std::abs(*on_q) > 1e-12) law += (law.empty() ? "" : " ") + term(*on_q, "v_q");
+  if (std::abs(on_p->kappa) > 1e-12) law += term(*on_p, "v_p");
+  if (std::abs(on_q->kappa) > 1e-12) law += (law.empty() ? "" : " ") + term(*on_q, "v_q");
   if (law.empty()) law = "0";
   if (law.rfind("+ ", 0) == 0) law.erase(0, 2);
   if (law.rfind("- ", 0) == 0) law = "-" + law.substr(2);
   out << (out.str().empty() ? "likely mistake: " : "") << "the damper force is " << law;
-  if (b_power == 0.0) out << " (it does not change with b)";
+  if (on_p->b_power == 0 && on_q->b_power == 0) out << " (it does not change with b)";
   out << " for every velocity tried, where (1.2) has -b (v_p - v_q)";
-  if (std::abs(*on_p) < 1e-12 && std::abs(*on_q) < 1e-12)
+  if (std::abs(on_p->kappa) < 1e-12 && std::abs(on_q->kappa) < 1e-12)
     out << ": the damper force (1.2) is zero";
-  else if (std::abs(*on_p - 1.0) < 1e-9 && std::abs(*on_q + 1.0) < 1e-9 && b_power == 1.0)
+  else if (is(*on_p, 1, 1) && is(*on_q, -1, 1))
     out << ": the damper force (1.2) has the opposite sign";
-  else if (std::abs(*on_q) < 1e-12)
+  else if (is(*on_p, -1, 1) && (is(*on_q, 1, 0) || is(*on_q, -1, 0)))
+    out << ": this is -b * v_p " << (on_q->kappa > 0 ? "+" : "-")
+        << " v_q, where b multiplies v_p only; (1.2) needs brackets, -b * (v_p - v_q)";
+  else if (std::abs(on_q->kappa) < 1e-12)
     out << ": it ignores v_q";
-  else if (std::abs(*on_p) < 1e-12)
+  else if (std::abs(on_p->kappa) < 1e-12)
     out << ": it ignores v_p";
-  return out.str();  // multiples such as 0.95 b come with no cause: only exact ones have one
+  return out.str();
 }
 
 // Concrete wrong versions of (2.3)-(2.4), each run on every probe before it is named. `spring`
@@ -947,35 +976,53 @@ std::string verlet_step_findings(const VerletStep& step) {
   }
   // With dampers only, a = -c v: solved with v_n = (r_{n+1} - r_{n-1}) / (κ h), κ = 2 in (4.2).
   if (said.empty()) {
-    const double c = 2.0;
+    double c = 2.0;
     int evaluations = 0;
     const AccelerationFunction damped = [&](const Vectors& r, const Vectors& v) -> const Vectors& {
       ++evaluations;
       acceleration_storage = -c * v + 0.0 * r;
       return acceleration_storage;
     };
-    // Two steps, r_{n-1} = 0 and not: the velocity the dampers saw as (λ r_{n+1} + μ r_{n-1})
-    // / (2h) from (4.1), r_{n+1} = 2 r_n - r_{n-1} - h² c v.
+    // The velocity the dampers saw, (λ r_{n+1} + ν r_n + μ r_{n-1}) / (2h), from (4.1) with a =
+    // -c v: the step is r_{n+1} = α r_n + β r_{n-1}, so one c gives two equations (the r_n and
+    // r_{n-1} parts): λ α + ν = 2 (2 - α) / (h c) and λ β + μ = 2 (-1 - β) / (h c). Two values
+    // of c give λ, ν and μ, and a third equation that checks them.
     const Vec2 r_now(0.1, 0.0), guess(5.0, 0.0);
-    const After d0 = from(Vec2::Zero(), r_now, guess, damped);
-    const int evaluations_first = evaluations;
-    const After d1 = from(Vec2(0.03, 0.0), r_now, guess, damped);
-    const auto seen = [&](double previous, double next) {  // λ next + μ previous
-      return 2.0 * (2 * r_now.x() - previous - next) / (h * c);
+    struct Step {
+      double alpha, beta, on_now, on_previous;  // the step, and the right-hand sides above
     };
-    const double lambda = seen(0.0, d0.r.x()) / d0.r.x();
-    const double mu = (seen(0.03, d1.r.x()) - lambda * d1.r.x()) / 0.03;
-    const double one_evaluation = 2 * r_now.x() - h * h * c * guess.x();
-    if (std::abs(d0.r.x() - one_evaluation) <= 1e-12 && evaluations_first == 1)
+    int evaluations_first = 0;
+    double first_r = 0.0;
+    const auto step_at = [&](double damping) {
+      c = damping;
+      const After d0 = from(Vec2::Zero(), r_now, guess, damped);
+      if (evaluations_first == 0) evaluations_first = evaluations, first_r = d0.r.x();
+      const After d1 = from(Vec2(0.03, 0.0), r_now, guess, damped);
+      const double on_r = d0.r.x() / r_now.x(), on_prev = (d1.r.x() - d0.r.x()) / 0.03;
+      return Step{on_r, on_prev, 2.0 * (2.0 - on_r) / (h * damping),
+                  2.0 * (-1.0 - on_prev) / (h * damping)};
+    };
+    const Step one = step_at(2.0), two = step_at(5.0);
+    c = 2.0;
+    const double lambda = (one.on_now - two.on_now) / (one.alpha - two.alpha);
+    const double nu = one.on_now - lambda * one.alpha;
+    const double mu = one.on_previous - lambda * one.beta;
+    const bool consistent =
+        std::abs(two.on_previous - lambda * two.beta - mu) <= 1e-6 * (1 + std::abs(mu));
+    const double one_evaluation = 2 * r_now.x() - h * h * 2.0 * guess.x();
+    if (std::abs(first_r - one_evaluation) <= 1e-12 && evaluations_first == 1)
       said.push_back(
           "with dampers the step evaluated a once, with the velocity passed in: the "
           "iteration of section 4 is missing or stops too early");
-    else if (!near(lambda, 1.0) || !near(mu, -1.0)) {
+    else if (!near(lambda, 1.0) || !near(mu, -1.0) || std::abs(nu) > 1e-9) {
       std::ostringstream out;
       out << "with dampers, (4.1) holds with a velocity ("
-          << combination({{lambda, "r_{n+1}"}, {mu, "r_{n-1}"}})
+          << combination({{lambda, "r_{n+1}"}, {nu, "r_n"}, {mu, "r_{n-1}"}})
           << ") / (2h) in the damper force, where (4.2) has (r_{n+1} - r_{n-1}) / (2h)";
-      exact = exact && simple(lambda) && simple(mu);
+      if (near(lambda, 1.0) && near(nu, -1.0) && std::abs(mu) <= 1e-9)
+        out << ": r_n is used where (4.2) has r_{n-1}";
+      exact = exact && consistent && simple(lambda) && simple(mu) &&
+              (std::abs(nu) <= 1e-9 || simple(nu));
       said.push_back(out.str());
     }
   }

@@ -78,6 +78,22 @@ Event next(std::initializer_list<Event> want) {
   throw std::runtime_error(message + (type.empty() ? "" : " (an exception of type " + type + ")"));
 }
 
+// libstdc++'s words for .at() past the end ("vector::_M_range_check: __n (which is 9) >=
+// this->size() (which is 9)") in a student's: "at(9) on a std::vector of 9 elements (0 to 8)".
+std::string range_check_words(const std::string& what) {
+  const std::string index_mark = "__n (which is ", size_mark = "this->size() (which is ";
+  const auto index_at = what.find(index_mark), size_at = what.find(size_mark);
+  if (what.find("_M_range_check") == std::string::npos || index_at == std::string::npos ||
+      size_at == std::string::npos)
+    return what;
+  const auto number = [&what](std::size_t from) {
+    return what.substr(from, what.find(')', from) - from);
+  };
+  const std::string index = number(index_at + index_mark.size());
+  const std::string size = number(size_at + size_mark.size());
+  return "at(" + index + ") on a std::vector of " + size + " elements: an index past the end";
+}
+
 // `function`: the task function that threw, named with its inputs in a standard exception's
 // message, since the test that catches it sees only the message.
 [[noreturn]] void rethrow_relayed(const std::exception_ptr& model_exception, const char* function) {
@@ -96,8 +112,8 @@ Event next(std::initializer_list<Event> want) {
       // "TYPE\nWHAT" (recorder.cpp); a message without the line break is all what().
       const auto line_break = message.find('\n');
       const std::string type = line_break == std::string::npos ? "" : message.substr(0, line_break);
-      const std::string what =
-          line_break == std::string::npos ? message : message.substr(line_break + 1);
+      const std::string what = range_check_words(
+          line_break == std::string::npos ? message : message.substr(line_break + 1));
       throw_standard(type, "your " + std::string(function) +
                                (open_inputs.empty() ? "" : " (called with " + open_inputs + ")") +
                                " threw '" + what + "'");
