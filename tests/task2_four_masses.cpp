@@ -223,14 +223,24 @@ TEST_CASE("Spring forces are added to what is already there", "[task2][spring]")
   Scene scene = random_grid(2, 2, false, 23);
   const Vectors& r = scene.particles.position;
   const Vectors& v = scene.particles.velocity;
-  Vectors force = Vectors::Constant(2, r.cols(), 0.5);
-  accumulate_spring_forces(scene.springs, r, v, force);
-  const Vectors alone = summed_forces(scene.springs, r, v);
-  REQUIRE(alone.norm() > 0.1);
-  INFO("compared: how far `force` is from what was there plus the spring forces, N");
-  INFO(recognise(force, {{"`force` was cleared (set to zero) first: add to what is there", alone}},
-                 1e-12));
-  CHECK((force - alone - Vectors::Constant(2, r.cols(), 0.5)).norm() <= 1e-12);
+  {
+    Vectors force = Vectors::Constant(2, r.cols(), 0.5);
+    accumulate_spring_forces(scene.springs, r, v, force);
+    const Vectors alone = summed_forces(scene.springs, r, v);
+    REQUIRE(alone.norm() > 0.1);
+    INFO("compared: how far `force` is from what was there plus the spring forces, N");
+    INFO(recognise(
+        force, {{"`force` was cleared (set to zero) first: add to what is there", alone}}, 1e-12));
+    CHECK((force - alone - Vectors::Constant(2, r.cols(), 0.5)).norm() <= 1e-12);
+  }
+  // A 1x1 grid has no springs: nothing is added, and no spring may be read (a loop to
+  // springs.size() - 1 in unsigned arithmetic runs past the end of the empty list).
+  const std::vector<Spring> none;
+  const Vectors at_rest = Vectors::Zero(2, 1);
+  Vectors force = Vectors::Constant(2, 1, 0.5);
+  accumulate_spring_forces(none, at_rest, at_rest, force);
+  INFO("compared: `force` of one particle after accumulate_spring_forces with no springs, N");
+  CHECK_THAT(Vec2(force.col(0)), IsNear(Vec2(0.5, 0.5), 0.0));
 }
 
 TEST_CASE("Spring forces: internal forces sum to zero, and without dampers their torque too",
