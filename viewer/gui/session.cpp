@@ -276,11 +276,13 @@ void Session::advance(long steps) {
       primary_->step();
     } catch (const std::exception& error) {
       report(error, code_ == Code::student && reference_ ? "Your code: " : "");
-      // The reference, run beside it, has come this far: say so, unless the diagnosis (which
-      // runs the reference itself when the forces kept every law) has said it already.
+      // The reference, run beside it, is one step behind: it takes the same step, and what it
+      // did is said, unless the diagnosis (which runs the reference itself when the forces kept
+      // every law) has said it already. Only what was run is said: a reference that took this
+      // step may still diverge later.
       if (reference_ && problem_.kind == Problem::Kind::diverged && reference_is_available() &&
           problem_.detail.find("reference code") == std::string::npos)
-        problem_.detail += " The reference code, run beside yours, is still stable at this h.";
+        problem_.detail += reference_takes_the_step();
     }
     if (!reference_ || problem_.kind != Problem::Kind::none) continue;
     try {
@@ -290,6 +292,18 @@ void Session::advance(long steps) {
     }
   }
   if (steps > 0 && primary_) history_.add(time(), primary_->diagnostics());
+}
+
+std::string Session::reference_takes_the_step() {
+  try {
+    reference_->step();
+  } catch (const DivergenceError&) {
+    return " The reference code, run beside yours, diverges at this same step too: at this h the "
+           "step itself makes the motion grow, whatever the code.";
+  } catch (const std::exception&) {
+    return "";  // the reference's own failure is not this problem's
+  }
+  return " The reference code, run beside yours, took this same step without diverging.";
 }
 
 double Session::largest_difference() const {

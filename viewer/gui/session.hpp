@@ -144,6 +144,9 @@ class Session {
   std::unique_ptr<Simulation> make(const Implementation& impl, const Simulation* previous) const;
   void rebuild(bool keep_state);
   void report(const std::exception& error, const std::string& whose);
+  /// After the code under test diverged: the reference, one step behind, takes the same step;
+  /// what it did, as a sentence for the divergence's detail ("" if it failed otherwise).
+  std::string reference_takes_the_step();
   template <class Edit>
   void edit_each(Edit&& edit);
 
