@@ -233,6 +233,19 @@ TEST_CASE("Spring forces are added to what is already there", "[task2][spring]")
         force, {{"`force` was cleared (set to zero) first: add to what is there", alone}}, 1e-12));
     CHECK((force - alone - Vectors::Constant(2, r.cols(), 0.5)).norm() <= 1e-12);
   }
+  {
+    // A spring's family only names it: (2.3) uses its own k, b and rest length, so the same
+    // springs labelled shear and bend (tasks 3 and 5 hand them over so) give the same forces.
+    std::vector<Spring> labelled = scene.springs;
+    for (std::size_t i = 0; i < labelled.size(); ++i)
+      labelled[i].family = spring_families[i % 3];
+    const Vectors as_structural = summed_forces(scene.springs, r, v);
+    INFO(
+        "compared: the forces of the same springs labelled structural, shear and bend in turn, "
+        "against all labelled structural, N");
+    CHECK((summed_forces(labelled, r, v) - as_structural).norm() <=
+          1e-12 * (1.0 + as_structural.norm()));
+  }
   // A 1x1 grid has no springs: nothing is added, and no spring may be read (a loop to
   // springs.size() - 1 in unsigned arithmetic runs past the end of the empty list).
   const std::vector<Spring> none;

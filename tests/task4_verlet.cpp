@@ -99,10 +99,13 @@ TEST_CASE("Verlet (4.1): without dampers, r_{n+1} = 2 r_n - r_{n-1} + h^2 a(r_n)
   } catch (const StepFailed& failed) {
     // Without dampers a does not depend on v: every pass of (4.1)-(4.2) gives the same r_{n+1}
     // and v_n, so the second pass must settle. One that never does compares other values.
-    FAIL("likely mistake: verlet_step gave up (\""
+    // Measured, not a cause: comparing the wrong values and overwriting r_n during a pass (an
+    // r_{n+1} that is a reference to r) both end here.
+    FAIL("measured: verlet_step gave up (\""
          << failed.what() << "\") on a model without dampers, where every pass of (4.1)-(4.2) "
-         << "gives the same v_n and the second must settle: the values your loop hands "
-         << "velocity_settled(...) are not two successive estimates of (4.2)'s v_n");
+         << "gives the same v_n, so two successive estimates of (4.2)'s v_n agree on the second "
+         << "pass: look at what your loop hands velocity_settled(...), and at whether a pass "
+         << "changes r_n or r_{n-1} (it may write only r_{n+1})");
   }
   const Vectors a = -undamped.w2 * s.r;
   const Vectors expected = 2.0 * s.r - s.r_previous + s.h * s.h * a;
@@ -183,13 +186,18 @@ TEST_CASE("Verlet: with dampers, the iteration of section 4 makes (4.1) and (4.2
              "(4.2)'s central "
           << "(r_{n+1} - r_{n-1}) / (2h)";
     else if (const std::string probed = probe_verlet_step(verlet_step_of(implementation()));
-             !probed.empty() && damped.evaluations >= needed)
-      why << probed;  // what the step solves
-    else
-      why << "likely mistake: after " << damped.evaluations
-          << " evaluations of a, the v_n in (4.1) is " << gap
-          << " m/s away from (4.2)'s (r_{n+1} - r_{n-1}) / (2h); repeat (4.1) and (4.2) "
-          << "until velocity_settled(...)";
+             probed.rfind("likely mistake: ", 0) == 0)
+      why << probed;  // a wrong formula, run on every probe: what the step solves
+    else {
+      // No cause checked: too few passes and a wrong (4.2) both leave a gap. What was measured.
+      why << "measured: after " << damped.evaluations << " evaluations of a, the v_n in (4.1) is "
+          << gap << " m/s away from (4.2)'s (r_{n+1} - r_{n-1}) / (2h)";
+      if (damped.evaluations < needed)
+        why << ", where a loop that repeats (4.1) and (4.2) until velocity_settled(...) takes at "
+            << "least " << needed << " from this guess";
+      if (!probed.empty()) why << "; " << probed.substr(probed.find(": ") + 2);
+      why << ": look at (4.2) in your loop and at when the loop stops";
+    }
     UNSCOPED_INFO(why.str());
   }
   CHECK(gap <= 1e-10 * scale);

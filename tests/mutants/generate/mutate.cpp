@@ -13,8 +13,9 @@
 //   springlab-mutate judge OUT RESULTS HALF
 //       Reads the grader's RESULTS folder (one folder per mutant) for the mutants of HALF: a
 //       mutant counts when it compiled and lost points in its own task; it is named when its
-//       task's first failure has a "likely mistake:" line about the function it changed (its name
-//       or an equation of its), wrong when that line is about another function only. Prints a
+//       task's first failure has a "likely mistake:" line (or, where no cause was checked, a
+//       "measured:" one) about the function it changed (its name or an equation of its), wrong
+//       when that line is about another function only. Prints a
 //       line per mutant and the totals.
 #include "cpp_lexer.hpp"
 
@@ -318,7 +319,10 @@ int judge(const fs::path& out, const fs::path& results, char half) {
     }
     ++counted;
     ++by_rule[rule].first;
-    const auto mistake_at = first.find("likely mistake: ");
+    // A cause ("likely mistake:") or, where no concrete wrong version was checked, what was
+    // measured ("measured:"): either is judged by what it is about.
+    auto mistake_at = first.find("likely mistake: ");
+    if (mistake_at == std::string::npos) mistake_at = first.find("measured: ");
     std::string verdict = "silent";
     // The verdict's own line (a crash or a limit) when it names the function or its file.
     const auto message_at = first.find('\n') + 1;
