@@ -839,6 +839,26 @@ std::string euler_step_findings(const EulerStep& step) {
   const double delta = (v_still - v0).col(0).dot(v0.col(0)) / v0.col(0).squaredNorm();
   const double beta = (r - r_still).col(0).dot(A) / (h * h * A.squaredNorm());
   const double gamma = (v - v_still).col(0).dot(A) / (h * A.squaredNorm());
+  // The law r1 = ρ r0 + α h v0 + β h² a, v1 = (1 + δ) v0 + γ h a must give every output, each
+  // component: a step that moves x alone, say, fits no such law, and its numbers are said as
+  // they are.
+  const auto off = [](const Vectors& got, const Vec2& law) { return (got.col(0) - law).norm(); };
+  const double misfit = std::max(
+      {off(r_rest, rho * r0.col(0)), off(r_still, rho * r0.col(0) + alpha * h * v0.col(0)),
+       off(r, rho * r0.col(0) + alpha * h * v0.col(0) + beta * h * h * A),
+       off(v_still, (1 + delta) * v0.col(0)), off(v, (1 + delta) * v0.col(0) + gamma * h * A)});
+  if (misfit > 1e-12 * (1.0 + r0.norm() + v0.norm())) {
+    const auto vec = [](const Vectors& x) {
+      return "(" + number(x(0, 0)) + ", " + number(x(1, 0)) + ")";
+    };
+    return "measured: with r0 = " + vec(r0) + " m, v0 = " + vec(v0) + " m/s, h = " + number(h) +
+           " s and a constant a = (" + number(A.x()) + ", " + number(A.y()) +
+           ") m/s^2 the step gives r1 = " + vec(r) + " and v1 = " + vec(v) +
+           ", where (1.4)-(1.5) give r1 = " + vec(r0 + h * v0) +
+           " and v1 = " + vec(v0 + h * A.replicate(1, 1)) +
+           "; no law r1 = r0 + α h v0 + β h^2 a fits it in both "
+           "x and y: look at each component of (1.4) and (1.5)";
+  }
   std::vector<std::string> said;
   if (calls_a != 1)
     said.push_back("the step evaluated the acceleration " + std::to_string(calls_a) +

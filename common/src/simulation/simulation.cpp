@@ -214,9 +214,10 @@ std::string Simulation::settling_facts() const {
   words << "The dampers are not the cause: here h c/2 is at most " << std::setprecision(3) << q
         << " (c, the largest damping rate per unit mass, from the scene's b, m and wind), so each "
            "pass of (4.1)-(4.2) shrinks the velocity's error at least that much and 100 passes "
-           "settle it. A loop that does not settle compares other values than two successive "
-           "estimates of (4.2)'s v_n, or does not update its estimate: see verlet_step's loop, "
-           "handout section 4.";
+           "settle it. Look at what verlet_step's loop hands velocity_settled(...) (two "
+           "successive estimates of (4.2)'s v_n, then the positions r and h for the scale) and at "
+           "whether each "
+           "pass updates its estimate: handout section 4.";
   return words.str();
 }
 
