@@ -394,7 +394,7 @@ struct SubmissionsDone {
   Plan plan;
   bool all_passed = true;
   std::size_t finished = 0;
-  std::vector<std::string> not_graded;  // "name: why"
+  std::vector<std::string> not_graded{};  // "name: why"
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 
   void operator()(const SubmissionResult& r) {
