@@ -106,6 +106,7 @@ def function_name(header):
     if not h:
         return None
     h = re.sub(r"^template\s*<.*?>\s*(?=[A-Za-z_\[])", "", h)
+    h = re.sub(r"__attribute__\s*\(\(.*?\)\)", "", h)
     if re.search(r"\b(namespace|extern)\b", h) and "(" not in h:
         return "namespace"
     first_paren = h.find("(")
