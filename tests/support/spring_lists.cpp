@@ -205,16 +205,8 @@ std::vector<Pair> all_but(int rows, int cols, const Offsets& offsets, const Pair
   return {kept.begin(), kept.end()};
 }
 
-std::vector<ListMistake> list_mistakes(const Offsets& offsets) {
-  std::vector<ListMistake> all;
-  all.push_back({"each pair is joined twice (once from each end?): join each pair once",
-                 [offsets](int rows, int cols) {
-                   const std::set<Pair> once = expected_pairs(rows, cols, offsets);
-                   std::vector<Pair> twice(once.begin(), once.end());
-                   twice.insert(twice.end(), once.begin(), once.end());
-                   return twice;
-                 }});
-  // Springs of some directions, at some place, left out, and nothing else.
+// Springs of some directions, at some place, left out, and nothing else.
+void add_missing(std::vector<ListMistake>& all, const Offsets& offsets) {
   for (const std::vector<Pair>& directions : direction_sets(offsets))
     for (const Place& place : places()) {
       std::string words =
@@ -239,6 +231,11 @@ std::vector<ListMistake> list_mistakes(const Offsets& offsets) {
                        return kept;
                      }});
     }
+}
+
+// Springs across a row's end: wrapped around by an index checked without its column, or a
+// cell's other diagonal taken from its top-left corner.
+void add_wrapped(std::vector<ListMistake>& all, const Offsets& offsets) {
   for (const Pair& o : offsets) {
     const auto [di, dj] = o;
     if (dj == 0) continue;
@@ -279,6 +276,10 @@ std::vector<ListMistake> list_mistakes(const Offsets& offsets) {
              return pairs;
            }});
   }
+}
+
+// The index formula (2.1) with rows for cols, or column by column.
+void add_wrong_index(std::vector<ListMistake>& all, const Offsets& offsets) {
   all.push_back(
       {"the index is i*rows + j where (2.1) has i*cols + j (the same on square grids "
        "only): check the index formula (2.1)",
@@ -291,6 +292,20 @@ std::vector<ListMistake> list_mistakes(const Offsets& offsets) {
        [offsets](int rows, int cols) {
          return with_index(rows, cols, offsets, [](int i, int j, int r, int) { return j * r + i; });
        }});
+}
+
+std::vector<ListMistake> list_mistakes(const Offsets& offsets) {
+  std::vector<ListMistake> all;
+  all.push_back({"each pair is joined twice (once from each end?): join each pair once",
+                 [offsets](int rows, int cols) {
+                   const std::set<Pair> once = expected_pairs(rows, cols, offsets);
+                   std::vector<Pair> twice(once.begin(), once.end());
+                   twice.insert(twice.end(), once.begin(), once.end());
+                   return twice;
+                 }});
+  add_missing(all, offsets);
+  add_wrapped(all, offsets);
+  add_wrong_index(all, offsets);
   return all;
 }
 

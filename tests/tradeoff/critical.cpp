@@ -209,21 +209,99 @@ std::string percent(double x) {
   return number(100.0 * x, 2) + " %";
 }
 
-// The fabric: theory about its hanging equilibrium, and (1 ± δ)·h_c tested by runs from it;
-// in the full study the bracket is then bisected to ±0.25 %. Explicit Euler's growth beyond its
-// limit is tiny (its critical modes are lightly damped, ζ ≈ 0.004): it is measured only when its
-// runs fit a budget of steps, which on the fabric they do not (millions of steps).
+// The fabric about its hanging equilibrium: its linear model, its spectrum (not in --quick), the
+// words saying so, and the perturbed start and spring lengths the runs use.
+struct Hanging {
+  LinearModel model;
+  std::optional<Spectrum> spectrum{};
+  std::string about{};
+  Scene start{};
+  std::vector<double> length{};
+};
+
+// (1 ± δ)·h_c tested by runs of `steps` from the hanging equilibrium; in the full study the
+// bracket is then bisected to ±0.25 %; when theory is off by more than δ, bisected from h_c/2.
+void measure_near(StepLimit& out, const Hanging& hanging, const std::string& method, double h_c,
+                  double delta, long steps, const StudyOptions& options) {
+  const std::string runs = ", on runs of " + std::to_string(steps) +
+                           " steps from a 1e-6 m random perturbation of the hanging equilibrium";
+  const auto unstable = [&](double h) {
+    return grows(hanging.start, hanging.length, method, h, steps);
+  };
+  double lo = (1 - delta) * h_c, hi = (1 + delta) * h_c;
+  if (!unstable(lo) && unstable(hi)) {
+    const int iterations = options.quick ? 0 : int(std::ceil(std::log2(delta / 0.0025)));
+    for (int i = 0; i < iterations; ++i)
+      (unstable(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
+    out.how = "bracket: stable at (1 − " + percent(delta) + ")·h_c, unstable at (1 + " +
+              percent(delta) + ")·h_c" +
+              (iterations > 0 ? ", then bisected " + std::to_string(iterations) + " times" : "") +
+              runs;
+  } else {  // theory is off by more than δ (an estimate): bisect from h_c/2 … 2h_c
+    lo = bisect(0.5 * h_c, 2.0 * h_c, 9, unstable);
+    hi = lo * std::pow(4.0, 1.0 / 512.0), lo /= std::pow(4.0, 1.0 / 512.0);
+    out.how = "bisection from h_c/2 … 2h_c (theory is not within ±" + percent(delta) + ")" + runs;
+  }
+  out.measured = 0.5 * (lo + hi);
+  out.half_width = 0.5 * (hi - lo);
+}
+
+// One method's limit on the hanging fabric: theory, then runs where they fit the budget of steps.
+// Explicit Euler's growth beyond its limit is tiny (its critical modes are lightly damped,
+// ζ ≈ 0.004): it is measured only when its runs fit, which on the fabric they do not (millions of
+// steps).
+StepLimit hanging_limit(const Scenario& s, const std::string& method, const Hanging& hanging,
+                        const StudyOptions& options, Progress& progress) {
+  constexpr long budget = 200000;  // steps a run may take: a few seconds
+  const std::optional<Spectrum>& spectrum = hanging.spectrum;
+  StepLimit out;
+  out.scene = s.name;
+  out.method = method;
+  out.about = hanging.about;
+  const std::string integrator = integrator_of(method);
+  if (const std::string missing = not_written(method); !missing.empty()) {
+    out.how = "not measured: " + missing;
+    return out;
+  }
+  const bool by_eigenvalues = integrator == "explicit-euler" || integrator == "rk4";
+  if (by_eigenvalues && !spectrum) {
+    out.source = "not computed in --quick (a 1520×1520 nonsymmetric eigen-solve)";
+    return out;
+  }
+  const CriticalStep theory =
+      by_eigenvalues ? CriticalStep{spectrum->limit(integrator), LimitSource::exact_formula}
+                     : critical_step_of(hanging.model, integrator, s.params.xpbd.substeps);
+  out.theory = theory.step;
+  out.source = source_name(theory.source);
+  const double h_c = theory.step;
+  if (std::isinf(h_c) || h_c <= 0.0) return out;
+  progress.begin(s.name + ": critical step of " + shown(method));
+  const double delta = 0.02;
+  const long steps = fabric_run_length(spectrum, integrator, (1 + delta) * h_c);
+  if (steps > budget) {
+    out.how = "not measured: 2 % beyond the limit a deviation grows by a factor 1 + " +
+              number(spectrum->growth(integrator, (1 + delta) * h_c) - 1.0) +
+              " a step, so reaching e³ would take " + std::to_string(steps) + " steps (" +
+              number(double(steps) * h_c / 3600.0, 2) + " h of simulated time)";
+    return out;
+  }
+  measure_near(out, hanging, method, h_c, delta, steps, options);
+  progress.done(double(steps) * 10.0 * 400.0);
+  return out;
+}
+
+// The fabric: theory about its hanging equilibrium, and (1 ± δ)·h_c tested by runs from it.
 std::vector<StepLimit> hanging_critical_steps(const Scenario& s, const StudyOptions& options,
                                               Progress& progress) {
   progress.begin(s.name + ": hanging equilibrium and its system eigenvalues");
   const double started = now();
   const Equilibrium equilibrium = hanging_equilibrium(s.params);
-  const LinearModel model = linearise(equilibrium.scene);
+  Hanging hanging{.model = linearise(equilibrium.scene)};
   // --quick skips the eigen-solve (5–15 s on this machine): its fabric checks are the Verlet
   // methods' exact limits, which need only the symmetric K.
-  std::optional<Spectrum> spectrum;
-  if (!options.quick) spectrum.emplace(model);
-  const std::string about =
+  if (!options.quick) hanging.spectrum.emplace(hanging.model);
+  const std::optional<Spectrum>& spectrum = hanging.spectrum;
+  hanging.about =
       "about its hanging equilibrium (implicit Euler at h = 0.05 s for 10 s, then " +
       std::to_string(equilibrium.newton_steps) + " Newton steps on the force balance: largest " +
       "acceleration left " + number(equilibrium.residual) + " m/s²" +
@@ -231,70 +309,11 @@ std::vector<StepLimit> hanging_critical_steps(const Scenario& s, const StudyOpti
                 : "") +
       ", " + seconds(now() - started) + ")";
   progress.done(3e8);
-  const Scene start = perturbed(equilibrium.scene);
-  const std::vector<double> length = lengths(equilibrium.scene);
-  constexpr long budget = 200000;  // steps a run may take: a few seconds
+  hanging.start = perturbed(equilibrium.scene);
+  hanging.length = lengths(equilibrium.scene);
   std::vector<StepLimit> limits;
-  for (const std::string& method : study_methods(options)) {
-    StepLimit out;
-    out.scene = s.name;
-    out.method = method;
-    out.about = about;
-    const std::string integrator = integrator_of(method);
-    if (const std::string missing = not_written(method); !missing.empty()) {
-      out.how = "not measured: " + missing;
-      limits.push_back(out);
-      continue;
-    }
-    const bool by_eigenvalues = integrator == "explicit-euler" || integrator == "rk4";
-    if (by_eigenvalues && !spectrum) {
-      out.source = "not computed in --quick (a 1520×1520 nonsymmetric eigen-solve)";
-      limits.push_back(out);
-      continue;
-    }
-    const CriticalStep theory =
-        by_eigenvalues ? CriticalStep{spectrum->limit(integrator), LimitSource::exact_formula}
-                       : critical_step_of(model, integrator, s.params.xpbd.substeps);
-    out.theory = theory.step;
-    out.source = source_name(theory.source);
-    const double h_c = theory.step;
-    if (std::isinf(h_c) || h_c <= 0.0) {
-      limits.push_back(out);
-      continue;
-    }
-    progress.begin(s.name + ": critical step of " + shown(method));
-    const double delta = 0.02;
-    const long steps = fabric_run_length(spectrum, integrator, (1 + delta) * h_c);
-    const std::string runs = ", on runs of " + std::to_string(steps) +
-                             " steps from a 1e-6 m random perturbation of the hanging equilibrium";
-    if (steps > budget) {
-      out.how = "not measured: 2 % beyond the limit a deviation grows by a factor 1 + " +
-                number(spectrum->growth(integrator, (1 + delta) * h_c) - 1.0) +
-                " a step, so reaching e³ would take " + std::to_string(steps) + " steps (" +
-                number(double(steps) * h_c / 3600.0, 2) + " h of simulated time)";
-      limits.push_back(out);
-      continue;
-    }
-    const auto unstable = [&](double h) { return grows(start, length, method, h, steps); };
-    double lo = (1 - delta) * h_c, hi = (1 + delta) * h_c;
-    if (!unstable(lo) && unstable(hi)) {
-      const int iterations = options.quick ? 0 : int(std::ceil(std::log2(delta / 0.0025)));
-      for (int i = 0; i < iterations; ++i)
-        (unstable(0.5 * (lo + hi)) ? hi : lo) = 0.5 * (lo + hi);
-      out.how = "bracket: stable at (1 − " + percent(delta) + ")·h_c, unstable at (1 + " +
-                percent(delta) + ")·h_c" +
-                (iterations > 0 ? ", then bisected " + std::to_string(iterations) + " times" : "") +
-                runs;
-    } else {  // theory is off by more than δ (an estimate): bisect from h_c/2 … 2h_c
-      lo = bisect(0.5 * h_c, 2.0 * h_c, 9, unstable);
-      hi = lo * std::pow(4.0, 1.0 / 512.0), lo /= std::pow(4.0, 1.0 / 512.0);
-      out.how = "bisection from h_c/2 … 2h_c (theory is not within ±" + percent(delta) + ")" + runs;
-    }
-    out.measured = 0.5 * (lo + hi);
-    out.half_width = 0.5 * (hi - lo);
-    progress.done(double(steps) * 10.0 * 400.0);
-    limits.push_back(out);
-  }
+  for (const std::string& method : study_methods(options))
+    limits.push_back(hanging_limit(s, method, hanging, options, progress));
   return limits;
 }
 

@@ -74,115 +74,102 @@ CLI::Validator range(const std::string& option, int lo, int hi) {
       "INT in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{
-      "springlab-tradeoff: error, energy, force evaluations and wall time of every "
-      "integrator (and Boost.Odeint's rk4 and dopri5) on the lab's scenes"};
+struct CommandLine {
   bool quick = false, no_figures = false;
   int repeats = 0;
   std::string impl = "reference";
   std::string out, figures, page;
   std::vector<std::string> scenes;
+};
+
+void add_options(CLI::App& app, CommandLine& c) {
   app.add_flag(
-      "--quick", quick,
+      "--quick", c.quick,
       "short study (1.28 s, fewer steps and tolerances, one timing) that checks measured orders, "
       "critical steps and force-evaluation budgets against theory; exit 1 on a failure");
-  app.add_option("--impl", impl,
+  app.add_option("--impl", c.impl,
                  "reference: the kit's methods (the handout's page); student: your explicit "
                  "Euler and Verlet beside them, in about a minute")
       ->check(CLI::IsMember({"reference", "student"}))
       ->capture_default_str();
-  app.add_option("--out", out,
+  app.add_option("--out", c.out,
                  "directory for the CSV files, gnuplot scripts, figures and page (default "
                  "build/release/tradeoff, with --impl student build/dev/tradeoff-student)");
-  app.add_option("--figures", figures, "directory for the SVG figures (default OUT/figures)");
-  app.add_option("--page", page, "the Markdown summary page to write (default OUT/tradeoff.md)");
-  app.add_option("--repeats", repeats,
+  app.add_option("--figures", c.figures, "directory for the SVG figures (default OUT/figures)");
+  app.add_option("--page", c.page, "the Markdown summary page to write (default OUT/tradeoff.md)");
+  app.add_option("--repeats", c.repeats,
                  "timed repeats per run, the minimum is kept (default 3, "
                  "--quick 1)")
       ->check(range("--repeats", 1, 20));
-  app.add_option("--scenes", scenes, "a subset of two-masses, grid, fabric")
+  app.add_option("--scenes", c.scenes, "a subset of two-masses, grid, fabric")
       ->check(CLI::IsMember({"two-masses", "grid", "fabric"}));
-  app.add_flag("--no-figures", no_figures, "skip gnuplot");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
-  }
-  const bool student = impl == "student";
-  if (student && quick) {
-    std::cerr << "springlab-tradeoff: --quick and --impl student: choose one (--impl student is "
-                 "short already)\n";
-    return 2;
-  }
-  if (out.empty()) out = student ? "build/dev/tradeoff-student" : "build/release/tradeoff";
-  if (figures.empty()) figures = (std::filesystem::path(out) / "figures").string();
-  if (page.empty()) page = (std::filesystem::path(out) / "tradeoff.md").string();
+  app.add_flag("--no-figures", c.no_figures, "skip gnuplot");
+}
 
-  Results results;
-  results.options = student ? student_options() : quick ? quick_options() : StudyOptions{};
-  StudyOptions& options = results.options;
-  options.xpbd = !options.quick && !options.student;
-  results.machine = machine();
-  if (repeats > 0) options.repeats = repeats;
-  if (!scenes.empty()) options.scenes = scenes;
-  const double started = now();
-  std::cerr << "tradeoff: "
-            << (student ? "your explicit Euler and Verlet beside the kit's methods"
-                        : "every method of the kit")
-            << " on " << options.scenes.size() << " scenes; first the references\n";
-  try {
-    for (const std::string& name : options.scenes) {
-      results.scenarios.push_back(make_scenario(name, options));
-      results.evaluation_seconds.push_back(evaluation_time(results.scenarios.back()));
-    }
-    double work = 0.0;
-    for (const Scenario& s : results.scenarios) {
-      work += critical_work(s, options);
-      std::vector<std::string> methods = study_methods(options);
-      methods.push_back(odeint_rk4);
-      for (const std::string& method : methods)
-        for (int k = k_min(s, options); k <= options.k_max; ++k)
-          work += (1.0 + options.repeats) *
-                  run_work(s, method, std::ldexp(s.params.step, k), options.duration);
-      work += (1.0 + options.repeats) * double(options.tolerances.size()) *
-              run_work(s, odeint_dopri5, 0.01, options.duration);
-    }
-    Progress progress(work);
-    for (const Scenario& s : results.scenarios) {
-      std::vector<Run> runs = run_scene(s, options, progress);
-      std::vector<StepLimit> limits = critical_steps(s, options, progress);
-      std::vector<Order> orders = measured_orders(s, runs, options);
-      results.runs.insert(results.runs.end(), runs.begin(), runs.end());
-      results.critical.insert(results.critical.end(), limits.begin(), limits.end());
-      results.orders.insert(results.orders.end(), orders.begin(), orders.end());
-      if (s.name == "fabric") {
-        results.implicit_fabric_cost = step_cost(s, "implicit-euler");
-        results.implicit_fabric_solves = count_solver_work(s, "implicit-euler", 200);
-        if (options.xpbd) results.xpbd = xpbd_study(s, options, progress);
-      }
-    }
-    std::cerr << "tradeoff: task4-damped: the lab's Verlet against textbook Verlet\n";
-    results.damped = damped_scene(options);
-  } catch (const InvalidParameter& e) {
-    std::cerr << "springlab-tradeoff: " << e.what() << '\n';
-    return 2;
+// The study's work in advance (for its progress): the critical steps, every method's runs at
+// every step, and dopri5 at every tolerance, on each scene.
+double study_work(const Results& results) {
+  const StudyOptions& options = results.options;
+  double work = 0.0;
+  for (const Scenario& s : results.scenarios) {
+    work += critical_work(s, options);
+    std::vector<std::string> methods = study_methods(options);
+    methods.push_back(odeint_rk4);
+    for (const std::string& method : methods)
+      for (int k = k_min(s, options); k <= options.k_max; ++k)
+        work += (1.0 + options.repeats) *
+                run_work(s, method, std::ldexp(s.params.step, k), options.duration);
+    work += (1.0 + options.repeats) * double(options.tolerances.size()) *
+            run_work(s, odeint_dopri5, 0.01, options.duration);
   }
-  results.total_seconds = now() - started;
-  write_csv(results, out);
-  std::cerr << "tradeoff: CSV files in " << out << '\n';
-  if (!no_figures) {
-    if (write_figures(results, out, figures))
-      std::cerr << "tradeoff: figures in " << figures << '\n';
+  return work;
+}
+
+// The scenes' references, then every run, critical step and order of each, the fabric's implicit
+// costs and XPBD study, and the damped scene's Verlet against textbook Verlet.
+void measure(Results& results) {
+  const StudyOptions& options = results.options;
+  for (const std::string& name : options.scenes) {
+    results.scenarios.push_back(make_scenario(name, options));
+    results.evaluation_seconds.push_back(evaluation_time(results.scenarios.back()));
+  }
+  Progress progress(study_work(results));
+  for (const Scenario& s : results.scenarios) {
+    std::vector<Run> runs = run_scene(s, options, progress);
+    std::vector<StepLimit> limits = critical_steps(s, options, progress);
+    std::vector<Order> orders = measured_orders(s, runs, options);
+    results.runs.insert(results.runs.end(), runs.begin(), runs.end());
+    results.critical.insert(results.critical.end(), limits.begin(), limits.end());
+    results.orders.insert(results.orders.end(), orders.begin(), orders.end());
+    if (s.name == "fabric") {
+      results.implicit_fabric_cost = step_cost(s, "implicit-euler");
+      results.implicit_fabric_solves = count_solver_work(s, "implicit-euler", 200);
+      if (options.xpbd) results.xpbd = xpbd_study(s, options, progress);
+    }
+  }
+  std::cerr << "tradeoff: task4-damped: the lab's Verlet against textbook Verlet\n";
+  results.damped = damped_scene(options);
+}
+
+// The CSV files, the figures and the page.
+void write_outputs(const Results& results, const CommandLine& c) {
+  write_csv(results, c.out);
+  std::cerr << "tradeoff: CSV files in " << c.out << '\n';
+  if (!c.no_figures) {
+    if (write_figures(results, c.out, c.figures))
+      std::cerr << "tradeoff: figures in " << c.figures << '\n';
     else
       std::cerr << "tradeoff: gnuplot failed or is missing: no figures (./lab setup installs "
                    "gnuplot-nox)\n";
   }
-  write_page(results, page, figures, out);
-  std::cerr << "tradeoff: page " << page << "; the study took " << seconds(results.total_seconds)
+  write_page(results, c.page, c.figures, c.out);
+  std::cerr << "tradeoff: page " << c.page << "; the study took " << seconds(results.total_seconds)
             << '\n';
+}
+
+// The student's findings, or --quick's checks against theory: the exit status.
+int conclude(const Results& results) {
+  const StudyOptions& options = results.options;
   if (options.student) {
     const std::vector<std::string> findings = student_findings(results);
     if (findings.empty())
@@ -200,4 +187,50 @@ int main(int argc, char** argv) {
                "within 2 %, force evaluations within budget, an implicit fabric step within "
                "conjugate gradients' bound on its products; counted, not timed)\n";
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "springlab-tradeoff: error, energy, force evaluations and wall time of every "
+      "integrator (and Boost.Odeint's rk4 and dopri5) on the lab's scenes"};
+  CommandLine c;
+  add_options(app, c);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  const bool student = c.impl == "student";
+  if (student && c.quick) {
+    std::cerr << "springlab-tradeoff: --quick and --impl student: choose one (--impl student is "
+                 "short already)\n";
+    return 2;
+  }
+  if (c.out.empty()) c.out = student ? "build/dev/tradeoff-student" : "build/release/tradeoff";
+  if (c.figures.empty()) c.figures = (std::filesystem::path(c.out) / "figures").string();
+  if (c.page.empty()) c.page = (std::filesystem::path(c.out) / "tradeoff.md").string();
+
+  Results results;
+  results.options = student ? student_options() : c.quick ? quick_options() : StudyOptions{};
+  StudyOptions& options = results.options;
+  options.xpbd = !options.quick && !options.student;
+  results.machine = machine();
+  if (c.repeats > 0) options.repeats = c.repeats;
+  if (!c.scenes.empty()) options.scenes = c.scenes;
+  const double started = now();
+  std::cerr << "tradeoff: "
+            << (student ? "your explicit Euler and Verlet beside the kit's methods"
+                        : "every method of the kit")
+            << " on " << options.scenes.size() << " scenes; first the references\n";
+  try {
+    measure(results);
+  } catch (const InvalidParameter& e) {
+    std::cerr << "springlab-tradeoff: " << e.what() << '\n';
+    return 2;
+  }
+  results.total_seconds = now() - started;
+  write_outputs(results, c);
+  return conclude(results);
 }

@@ -48,8 +48,9 @@ std::string measured(const StepLimit& c) {
   return number(c.measured, 4) + " ± " + number(100.0 * c.half_width / c.measured, 2) + " %";
 }
 
-void scene_section(std::ostream& out, const Results& r, const Scenario& s,
-                   const std::string& figures) {
+// The scene's figures and the cheapest method for each error.
+void write_cheapest(std::ostream& out, const Results& r, const Scenario& s,
+                    const std::string& figures) {
   out << "\n## " << s.title << "\n\nReference: " << s.reference_note << ".\n\n";
   for (const char* figure : {"work-precision", "error-vs-step", "critical-steps", "energy"})
     out << "![" << s.name << " " << figure << "](" << figures << "/" << s.name << "-" << figure
@@ -62,6 +63,10 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
   for (const double level : levels)
     out << "| " << number(level) << " m | " << cell(cheapest(r.runs, s.name, level, false), false)
         << " | " << cell(cheapest(r.runs, s.name, level, true), true) << " |\n";
+}
+
+// Each method's order, theory against measured.
+void write_orders(std::ostream& out, const Results& r, const Scenario& s) {
   out << "\n### Measured orders\n\n| method | theory | measured | fitted over h (s) |\n"
       << "|---|---|---|---|\n";
   for (const Order& o : r.orders)
@@ -72,6 +77,10 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
                                      : number(o.h_from) + " … " + number(o.h_to) + " (" +
                                            std::to_string(o.points) + " steps)")
           << " |\n";
+}
+
+// Each method's critical step, theory against measured, and how they were found.
+void write_critical_steps(std::ostream& out, const Results& r, const Scenario& s) {
   out << "\n### Critical steps\n\n| method | theory (s) | how | measured (s) | measured/theory |\n"
       << "|---|---|---|---|---|\n";
   for (const StepLimit& c : r.critical)
@@ -98,6 +107,10 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
     for (const StepLimit* c : limits)
       if (!c->how.empty()) out << "- `" << shown(c->method) << "`: " << c->how << ".\n";
   }
+}
+
+// Every method at the lab's step, and on the fabric the implicit step's cost, timed and counted.
+void write_lab_step(std::ostream& out, const Results& r, const Scenario& s) {
   out << "\n### At the lab step h = " << number(s.params.step) << " s\n\n"
       << "| method | stable | largest error (m) | error at the end (m) | energy error | "
          "evaluations a step | cost a step (evaluations' time) | wall time |\n"
@@ -127,6 +140,14 @@ void scene_section(std::ostream& out, const Results& r, const Scenario& s,
         << " sparse factorisations; theory allows " << c.products_allowed
         << " products a step (condition number at most " << number(c.condition_bound) << ").\n";
   }
+}
+
+void scene_section(std::ostream& out, const Results& r, const Scenario& s,
+                   const std::string& figures) {
+  write_cheapest(out, r, s, figures);
+  write_orders(out, r, s);
+  write_critical_steps(out, r, s);
+  write_lab_step(out, r, s);
 }
 
 const Order* order_of(const Results& r, const std::string& scene, const std::string& method) {

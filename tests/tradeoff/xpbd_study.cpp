@@ -109,14 +109,13 @@ double frame_time(const SceneParameters& p) {
 
 }  // namespace
 
-XpbdStudy xpbd_study(const Scenario& fabric, const StudyOptions& options, Progress& progress) {
-  XpbdStudy study;
-  study.frame = frame;
-  const double duration = options.duration, sample = options.sample;
-  study.duration = duration;
-  const SceneParameters lab = fabric.params;
+namespace {
 
-  // 1. n×1 against 1×n, on the lab fabric and on one a hundred times stiffer.
+// 1. n×1 against 1×n, on the lab fabric and on one a hundred times stiffer.
+void substeps_against_iterations(XpbdStudy& study, const Scenario& fabric,
+                                 const StudyOptions& options, Progress& progress) {
+  const double duration = options.duration, sample = options.sample;
+  const SceneParameters lab = fabric.params;
   study.stiff_factor = 100.0;
   SceneParameters stiff = lab;
   for (SpringFamilyParameters* family : {&stiff.structural, &stiff.shear, &stiff.bend})
@@ -147,12 +146,15 @@ XpbdStudy xpbd_study(const Scenario& fabric, const StudyOptions& options, Progre
       study.pairs.push_back(pair);
     }
   }
+}
 
-  // The frame budget: implicit Euler's wall time a frame at h_f (one step) on the lab fabric.
+// The frame budget: implicit Euler's wall time a frame at h_f (one step) on the lab fabric; XPBD's
+// substeps within it (one iteration each), and symplectic Euler's steps.
+void frame_budget(XpbdStudy& study, const Scenario& fabric, Progress& progress) {
+  const SceneParameters& lab = fabric.params;
   progress.begin("xpbd: the frame budget (implicit Euler's frame time)");
   study.budget_seconds = frame_time(with(lab, "implicit-euler", frame));
   study.evaluation_seconds = evaluation_time(fabric);
-  // XPBD's substeps within it (one iteration each), and symplectic Euler's steps.
   study.budget_substeps = 1;
   for (int n = 2; n <= 256; n *= 2)
     if (frame_time(with(lab, "xpbd", frame, n, 1)) <= study.budget_seconds)
@@ -161,9 +163,12 @@ XpbdStudy xpbd_study(const Scenario& fabric, const StudyOptions& options, Progre
   for (int n = 2; n <= 256; n *= 2)
     if (frame_time(with(lab, "symplectic-euler", frame / n)) <= study.budget_seconds)
       study.budget_symplectic_steps = n;
+}
 
-  // 2. The energy kept, without dampers: (E − E_eq)/(E_0 − E_eq), E_eq the hanging
-  //    equilibrium's energy (the least the fabric can have), 1 for the exact motion.
+// 2. The energy kept, without dampers: (E − E_eq)/(E_0 − E_eq), E_eq the hanging equilibrium's
+//    energy (the least the fabric can have), 1 for the exact motion.
+void energy_kept(XpbdStudy& study, const SceneParameters& lab, const StudyOptions& options,
+                 Progress& progress) {
   SceneParameters undamped = lab;
   for (SpringFamilyParameters* family : {&undamped.structural, &undamped.shear, &undamped.bend})
     family->b = 0.0;
@@ -181,9 +186,14 @@ XpbdStudy xpbd_study(const Scenario& fabric, const StudyOptions& options, Progre
        {with(undamped, "rk4", frame / 64), with(undamped, "implicit-euler", frame),
         with(undamped, "xpbd", frame, n, 1), with(undamped, "xpbd", frame, 1, n),
         with(undamped, "symplectic-euler", frame / m)})
-    study.energy.push_back(run_against(p, nullptr, duration, sample, study.equilibrium_energy));
+    study.energy.push_back(
+        run_against(p, nullptr, options.duration, options.sample, study.equilibrium_energy));
+}
 
-  // 3. The stiffness each survives at the budget.
+// 3. The stiffness each survives at the budget.
+void stiffness_survived(XpbdStudy& study, const SceneParameters& lab, const StudyOptions& options,
+                        Progress& progress) {
+  const int n = study.budget_substeps, m = study.budget_symplectic_steps;
   for (double factor : {1.0, 10.0, 100.0, 1e3, 1e4, 1e5}) {
     progress.begin("xpbd: stiffness x" + number(factor) + " at the frame budget");
     SceneParameters p = lab;
@@ -194,9 +204,21 @@ XpbdStudy xpbd_study(const Scenario& fabric, const StudyOptions& options, Progre
     for (const SceneParameters& q :
          {with(p, "symplectic-euler", frame / m), with(p, "implicit-euler", frame),
           with(p, "xpbd", frame, n, 1), with(p, "xpbd", frame, 1, n)})
-      row.runs.push_back(run_against(q, nullptr, duration, sample));
+      row.runs.push_back(run_against(q, nullptr, options.duration, options.sample));
     study.stiffness.push_back(row);
   }
+}
+
+}  // namespace
+
+XpbdStudy xpbd_study(const Scenario& fabric, const StudyOptions& options, Progress& progress) {
+  XpbdStudy study;
+  study.frame = frame;
+  study.duration = options.duration;
+  substeps_against_iterations(study, fabric, options, progress);
+  frame_budget(study, fabric, progress);
+  energy_kept(study, fabric.params, options, progress);
+  stiffness_survived(study, fabric.params, options, progress);
   progress.done(0.0);
   return study;
 }
@@ -207,10 +229,8 @@ std::string pass(const XpbdRun& run) {
   return run.stable ? number(run.error, 3) : "**" + run.why + "**";
 }
 
-}  // namespace
-
-void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string& figures,
-                        const std::string& machine) {
+// The section's opening: what XPBD is, the paper's claims, what was measured where.
+void write_xpbd_intro(std::ostream& out, const XpbdStudy& x, const std::string& machine) {
   out << "\n## XPBD with small steps, measured on the kit's fabric\n\n"
       << "XPBD (`--integrator xpbd`, handout/integrators.md) projects every spring as a distance "
          "constraint of compliance 1/k, with its damper as the constraint's damping term, in "
@@ -220,7 +240,10 @@ void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string
          "pinned), a frame of h_f = "
       << number(x.frame) << " s, " << number(x.duration) << " s of motion"
       << (machine.empty() ? "" : ", on " + machine) << ".\n\n";
-  // 1.
+}
+
+// 1. n substeps of one iteration against one step of n iterations: the table.
+void write_substeps_table(std::ostream& out, const XpbdStudy& x, const std::string& figures) {
   out << "### 1. n substeps of one iteration against one step of n iterations\n\n"
       << "Equal work: both make n passes over the springs a frame (counted: the projections "
          "below). Error: the largest distance to the reference at the output times "
@@ -236,7 +259,6 @@ void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string
       << "| fabric | n | error n×1 (m) | error 1×n (m) | strain n×1 | strain 1×n | ms a frame "
          "n×1 | ms a frame 1×n | projections a frame |\n"
       << "|---|---|---|---|---|---|---|---|---|\n";
-  int substeps_win = 0, pairs = 0;
   for (const XpbdPair& p : x.pairs) {
     const double frames = std::max(1.0, double(p.substeps.time.size()) - 1.0);
     out << "| " << (p.stiff ? "stiff" : "lab") << " | " << p.n << " | " << pass(p.substeps) << " | "
@@ -244,16 +266,18 @@ void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string
         << number(p.iterations.strain, 4) << " | " << number(1e3 * p.substeps.frame_seconds, 3)
         << " | " << number(1e3 * p.iterations.frame_seconds, 3) << " | "
         << number(double(p.substeps.projections) / frames, 6) << " |\n";
+  }
+}
+
+// 1. What the table says of the paper's claim, on accuracy and on stretch.
+void write_substeps_verdict(std::ostream& out, const XpbdStudy& x) {
+  // Accuracy: which of each pair n > 1 had the smaller position error. Stretch, the paper's
+  // measure: which stretched less, and which came closer to the reference's own stretch.
+  int substeps_win = 0, pairs = 0, less_stretch = 0, closer_stretch = 0;
+  for (const XpbdPair& p : x.pairs)
     if (p.n > 1 && p.substeps.stable && p.iterations.stable) {
       ++pairs;
       if (p.substeps.error < p.iterations.error) ++substeps_win;
-    }
-  }
-  // Stretch, the paper's measure: which of the pair stretched less, and which came closer to
-  // the reference's own stretch.
-  int less_stretch = 0, closer_stretch = 0;
-  for (const XpbdPair& p : x.pairs)
-    if (p.n > 1 && p.substeps.stable && p.iterations.stable) {
       const double reference = p.stiff ? x.stiff_reference_strain : x.lab_reference_strain;
       if (p.substeps.strain < p.iterations.strain) ++less_stretch;
       if (std::abs(p.substeps.strain - reference) < std::abs(p.iterations.strain - reference))
@@ -278,7 +302,10 @@ void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string
       << " on the stiff one), not only a constraint error as on the paper's nearly inextensible "
          "cloth; one step of n iterations, which converges to backward Euler at the whole frame, "
          "damps the falling fabric's swing and so stretches less than the true motion does.\n";
-  // 2.
+}
+
+// 2. Energy kept against implicit Euler at the same frame budget.
+void write_energy_section(std::ostream& out, const XpbdStudy& x, const std::string& figures) {
   out << "\n### 2. Energy kept against implicit Euler at the same frame budget\n\n"
       << "The budget: implicit Euler's wall time for one frame (one step of h_f) on the lab "
          "fabric, "
@@ -315,7 +342,10 @@ void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string
         << (xs->energy.back() > ie->energy.back() ? "the kit's figures agree."
                                                   : "the kit's figures do not agree.")
         << "\n";
-  // 3.
+}
+
+// 3. The stiffness each survives at that budget: the table.
+void write_stiffness_table(std::ostream& out, const XpbdStudy& x) {
   out << "\n### 3. The stiffness each survives at that budget\n\n"
       << "Every family's k multiplied by the factor, the lab's dampers kept; each method within "
          "the frame budget above. A cell gives the largest strain of a run that stayed stable, "
@@ -334,6 +364,10 @@ void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string
       out << (r.stable ? "strain " + number(r.strain, 3) : "**" + r.why + "**") << " | ";
     out << "\n";
   }
+}
+
+// 3. The largest factor each method survived, and what surviving means at the stiffest.
+void write_stiffness_survival(std::ostream& out, const XpbdStudy& x) {
   // Survival per method: the largest factor it ran.
   if (!x.stiffness.empty()) {
     out << "\nThe largest stiffness factor each survived: ";
@@ -366,6 +400,18 @@ void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string
              "stretch.";
     out << "\n";
   }
+}
+
+}  // namespace
+
+void write_xpbd_section(std::ostream& out, const XpbdStudy& x, const std::string& figures,
+                        const std::string& machine) {
+  write_xpbd_intro(out, x, machine);
+  write_substeps_table(out, x, figures);
+  write_substeps_verdict(out, x);
+  write_energy_section(out, x, figures);
+  write_stiffness_table(out, x);
+  write_stiffness_survival(out, x);
 }
 
 std::string write_xpbd_figures(const XpbdStudy& x, const std::string& dir,

@@ -266,19 +266,9 @@ constexpr const char* exit_codes =
     "error.\nHeadless runs that last more than a few seconds show their progress on stderr; one "
     "that would last more than a few minutes says so first.";
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  // A closed pipe is then a write error, reported with exit 6, not a silent death by SIGPIPE.
-  platform::ignore_broken_pipes();
-  // Under an address-space limit (ulimit -v), glibc's malloc reserves 64 MiB of it for each thread
-  // that allocates (llvmpipe's included): whether the window then fitted, and which allocation
-  // failed, changed from run to run and from limit to limit (600 MB crashed, 650 MB ran). One
-  // arena makes the window's need a fixed amount, which check_window_memory compares with the
-  // limit.
-  platform::one_arena_under_memory_limits();
-  Options options;
-  CLI::App cli{"springlab-view: watch, steer and diagnose a springlab scene in a window"};
+// The command line: the options in the order --help lists them, and its footer (the
+// integrators, the window's keys, the exit codes).
+void add_options(CLI::App& cli, Options& options) {
   cli.add_option("--scene", options.app.scene,
                  "task1 ... task5, task4-damped or a scene file (TOML)")
       ->capture_default_str();
@@ -315,6 +305,22 @@ int main(int argc, char** argv) {
              "shift+click to push it;\nwheel to zoom, drag the background to pan; space runs or "
              "pauses, S steps once, R resets, F fits the view." +
              exit_codes);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // A closed pipe is then a write error, reported with exit 6, not a silent death by SIGPIPE.
+  platform::ignore_broken_pipes();
+  // Under an address-space limit (ulimit -v), glibc's malloc reserves 64 MiB of it for each thread
+  // that allocates (llvmpipe's included): whether the window then fitted, and which allocation
+  // failed, changed from run to run and from limit to limit (600 MB crashed, 650 MB ran). One
+  // arena makes the window's need a fixed amount, which check_window_memory compares with the
+  // limit.
+  platform::one_arena_under_memory_limits();
+  Options options;
+  CLI::App cli{"springlab-view: watch, steer and diagnose a springlab scene in a window"};
+  add_options(cli, options);
   // Every message through printable_lines: the user's text in it (a scene name, a path) cannot
   // command the terminal (ESC).
   const auto say = [](const std::string& message) {

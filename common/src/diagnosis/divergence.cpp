@@ -514,167 +514,239 @@ void set_diagnosis_reference(const Implementation* reference) {
 const Implementation* registered_diagnosis_reference() {
   return diagnosis_reference;
 }
+namespace {
 
-Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, double start_time,
-                              long steps, const DiagnosisBudget& budget) {
-  const SceneParameters& p = start.parameters;
-  const Particles& particles = start.particles;
-  const int n = particles.size();
-  Diagnosis d;
-  d.step = p.step;
-  d.critical = scene_critical_step(start, budget, &d.growth);
-  limit_of_forces_that_ran(d, start, impl, budget);
+// The evidence of a replay: one watch for each law the forces must keep, each with what it saw.
 
-  // What the replay watches.
-  const bool pinned =
-      std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
-  const bool pushed = p.push_duration > start_time && !p.push.isZero() && p.pushed != "none";
-  const bool free_of_outside = !p.gravity.enabled && !p.wind.enabled && !pushed && !pinned;
-  const bool gravity_only = p.gravity.enabled && !p.wind.enabled && !pushed && !pinned;
-  const std::vector<Mirror> mirrors = symmetric_mirrors(start);
-  const double total_mass = particles.mass.sum();
-  const Vec2 g = p.gravity.enabled ? p.gravity.acceleration : Vec2::Zero();
+// Newton's third law through the total momentum: with nothing outside the springs acting it
+// keeps its start value, and with gravity alone it changes by t times the total mass times g.
+struct MomentumWatch {
+  bool free_of_outside = false;  // no gravity, wind, push or pin
+  bool gravity_only = false;     // gravity, and no wind, push or pin
+  double total_mass = 0.0;       // kg
+  Vec2 g = Vec2::Zero();         // m/s², zero without gravity
+  Vec2 p0 = Vec2::Zero();        // kg·m/s, the start's
+  double scale = 0.0;            // kg·m/s, the largest Σ m_i |v_i| so far
+  double broke = not_a_number;   // s, when it first left what the law allows
+  Vec2 end = Vec2::Zero(), deviation_end = Vec2::Zero();  // kg·m/s, at the replay's last step
 
-  long budget_steps = 0;
-  if (n <= budget.particles && steps > 0)
-    budget_steps = std::min(steps, long(std::max(1.0, budget.particle_steps / std::max(n, 1))));
+  MomentumWatch(const SceneParameters& p, const Particles& particles, double start_time) {
+    const bool pinned =
+        std::find(particles.pinned.begin(), particles.pinned.end(), true) != particles.pinned.end();
+    const bool pushed = p.push_duration > start_time && !p.push.isZero() && p.pushed != "none";
+    free_of_outside = !p.gravity.enabled && !p.wind.enabled && !pushed && !pinned;
+    gravity_only = p.gravity.enabled && !p.wind.enabled && !pushed && !pinned;
+    total_mass = particles.mass.sum();
+    g = p.gravity.enabled ? p.gravity.acceleration : Vec2::Zero();
+    p0 = linear_momentum(particles.mass, particles.velocity);
+    scale = (particles.mass.transpose() * particles.velocity.colwise().norm().transpose()).value();
+    end = p0;
+  }
 
-  bool start_finite = true;
-  SignFit fit;
-  const Vec2 p0 = linear_momentum(particles.mass, particles.velocity);
-  double momentum_scale =
-      (particles.mass.transpose() * particles.velocity.colwise().norm().transpose()).value();
-  double momentum_broke = not_a_number, symmetry_broke = not_a_number;
-  double gravity_wrong = not_a_number;  // s, when add_gravity first added other than m_i g
-  int gravity_particle = -1;
-  Vec2 gravity_added = Vec2::Zero(), gravity_spring = Vec2::Zero();  // N
-  double energy_doubled = not_a_number, start_energy = 0.0, end_energy = 0.0, reference = 0.0;
-  double energy_time = start_time;  // s, when end_energy was measured
-  Vec2 momentum_end = p0, deviation_end = Vec2::Zero();
-  double asymmetry_end = 0.0, asymmetry_at_break = 0.0;
-  const Mirror* broken_mirror = nullptr;
-  bool symmetry_window = true;
-  double end_time = start_time;
-  long replayed = 0;
-  // The largest |L - l0| / l0 at the start, and when the energy had doubled.
-  const double start_strain = strain_of(start.springs, particles.position);
-  double strain_at_growth = not_a_number;
-  if (budget_steps > 0) {
-    try {
-      DivergenceLimits quiet;
-      quiet.energy_growth = infinity;
-      quiet.energy_check_interval = INT_MAX;
-      quiet.diagnose = false;
-      Simulation replay(Scene(start), impl, quiet);
-      detail::ReplayAccess::start_at(replay, start_time);
-      Vectors kit_spring, kit_damper;
-      SpringsApart apart(start.springs, p.rows, p.cols);
-      long evaluations = 0;
-      Vectors spring_forces;
-      detail::ReplayAccess::watch_forces(
-          replay, [&](int stage, const Vectors& r, const Vectors& v, const Vectors& f) {
-            if (stage == 1) {  // what add_gravity added, against m_i g (5.2)
-              if (!std::isnan(gravity_wrong) || spring_forces.cols() != f.cols()) return;
-              const Vectors added = f - spring_forces;
-              for (Eigen::Index i = 0; i < f.cols(); ++i) {
-                const Vec2 expected = particles.mass[i] * g;
-                const Vec2 error = added.col(i) - expected;
-                if (!(error.norm() <= 1e-9 * (expected.norm() + spring_forces.col(i).norm()))) {
-                  gravity_wrong = replay.time();
-                  gravity_particle = int(i);
-                  gravity_added = added.col(i);
-                  gravity_spring = spring_forces.col(i);
-                  break;
-                }
-              }
-              return;
-            }
-            spring_forces = f;
-            if (++evaluations == 1) start_finite = f.allFinite();
-            if (fit.samples >= 400 || !f.allFinite() || !r.allFinite() || !v.allFinite()) return;
-            apart.forces(r, v, kit_spring, kit_damper);
-            fit.add(f, kit_spring, kit_damper);
-          });
-      start_energy = replay.diagnostics().total();
-      reference = replay.reference_energy();
-      const Vectors& r0 = particles.position;
-      const int check_every = 8;
-      for (long k = 0; k < budget_steps; ++k) {
-        ++replayed;  // counted when tried: the run's last step may be the one that fails
-        replay.step();
-        const Particles& now = replay.particles();
-        const double t = replay.time();
-        end_time = t;
-        momentum_scale =
-            std::max(momentum_scale,
-                     (now.mass.transpose() * now.velocity.colwise().norm().transpose()).value());
-        const Vec2 momentum = linear_momentum(now.mass, now.velocity);
-        if (free_of_outside || gravity_only) {
-          const Vec2 deviation = momentum - p0 - (t - start_time) * total_mass * g;
-          double tolerance = 1e-6 * std::max(momentum_scale, 1e-3 * total_mass * p.spacing);
-          if (gravity_only) tolerance += 2 * p.step * total_mass * g.norm();
-          if (std::isnan(momentum_broke) && deviation.norm() > tolerance) momentum_broke = t;
-          momentum_end = momentum;
-          deviation_end = deviation;
-        }
-        // Symmetry is judged until a particle first moves a grid spacing from where the whole
-        // grid moved: a motion that large may break it on its own (a symmetric oscillation can
-        // pump an antisymmetric one out of rounding), and one that runs away amplifies the
-        // rounding of mirrored sums without bound.
-        if (!mirrors.empty()) {
-          const Vectors moved = now.position - r0;
-          const Vec2 mean = moved.rowwise().mean();
-          symmetry_window =
-              symmetry_window && (moved.colwise() - mean).colwise().norm().maxCoeff() <= p.spacing;
-          for (const Mirror& m : mirrors) {
-            if (!broken_mirror && symmetry_window) {
-              const double mismatch = m.mismatch(now.position);
-              if (mismatch > 1e-6 * p.spacing) {
-                symmetry_broke = t;
-                broken_mirror = &m;
-                asymmetry_at_break = mismatch;
-              }
-            }
-            if (&m == broken_mirror) asymmetry_end = m.mismatch(now.position);
-          }
-        }
-        if (k % check_every == check_every - 1 || k + 1 == budget_steps) {
-          end_energy = replay.diagnostics().total();
-          energy_time = t;
-          if (std::isnan(energy_doubled) && end_energy > 2 * reference) {
-            energy_doubled = t;
-            strain_at_growth = strain_of(start.springs, now.position);
-          }
-        }
+  void observe(const Particles& now, double t, double start_time, const SceneParameters& p) {
+    scale =
+        std::max(scale, (now.mass.transpose() * now.velocity.colwise().norm().transpose()).value());
+    const Vec2 momentum = linear_momentum(now.mass, now.velocity);
+    if (!free_of_outside && !gravity_only) return;
+    const Vec2 deviation = momentum - p0 - (t - start_time) * total_mass * g;
+    double tolerance = 1e-6 * std::max(scale, 1e-3 * total_mass * p.spacing);
+    if (gravity_only) tolerance += 2 * p.step * total_mass * g.norm();
+    if (std::isnan(broke) && deviation.norm() > tolerance) broke = t;
+    end = momentum;
+    deviation_end = deviation;
+  }
+};
+
+// Gravity as (5.2): what add_gravity added to the spring forces, against m_i g.
+struct GravityWatch {
+  Eigen::VectorXd mass;         // kg, the particles'
+  Vec2 g = Vec2::Zero();        // m/s², zero without gravity
+  Vectors spring_forces;        // N, the last forces before gravity
+  double wrong = not_a_number;  // s, when add_gravity first added other than m_i g
+  int particle = -1;            // the particle it was wrong on
+  Vec2 added = Vec2::Zero(), spring = Vec2::Zero();  // N, what it added, the springs' force there
+
+  void after_springs(const Vectors& f) { spring_forces = f; }
+  void after_gravity(const Vectors& f, double time) {
+    if (!std::isnan(wrong) || spring_forces.cols() != f.cols()) return;
+    const Vectors gravity = f - spring_forces;
+    for (Eigen::Index i = 0; i < f.cols(); ++i) {
+      const Vec2 expected = mass[i] * g;
+      const Vec2 error = gravity.col(i) - expected;
+      if (!(error.norm() <= 1e-9 * (expected.norm() + spring_forces.col(i).norm()))) {
+        wrong = time;
+        particle = int(i);
+        added = gravity.col(i);
+        spring = spring_forces.col(i);
+        break;
       }
-    } catch (const std::exception&) {
-      // The replay diverged too (it ends where the run did) or its code failed: what it saw so far
-      // is the evidence.
     }
   }
-  d.replayed = end_time - start_time;
-  d.replayed_all = budget_steps > 0 && replayed == steps;
+};
 
-  std::ostringstream words;
-  const SignFit::Result signs = fit.solve();
-  // What the replay could check on this scene, in words.
-  std::string kept;
-  if (replayed > 0) {
-    std::vector<std::string> laws;
-    if (free_of_outside) laws.push_back("the total momentum, (2.4)");
-    if (gravity_only) laws.push_back("the momentum gravity gives, (5.2)");
-    if (!mirrors.empty()) laws.push_back("the mirror symmetry of the start");
-    if (fit.samples > 0)
-      laws.push_back("the directions of the spring and damper forces, (1.1) and (1.2)");
-    for (std::size_t i = 0; i < laws.size(); ++i)
-      kept += (i == 0 ? "" : i + 1 == laws.size() ? " and " : ", ") + laws[i];
+// The mirror symmetry of the start, which the motion must keep (a spring missing, doubled or
+// misplaced breaks it).
+struct SymmetryWatch {
+  std::vector<Mirror> mirrors;       // those the start is symmetric under
+  Vectors r0;                        // m, the start's positions
+  bool window = true;                // whether no particle has yet moved a spacing from the grid
+  int broken = -1;                   // the mirror broken first, -1 for none
+  double broke = not_a_number;       // s, when
+  double at_break = 0.0, end = 0.0;  // m, the mismatch then and at the replay's last step
+
+  // Symmetry is judged until a particle first moves a grid spacing from where the whole grid
+  // moved: a motion that large may break it on its own (a symmetric oscillation can pump an
+  // antisymmetric one out of rounding), and one that runs away amplifies the rounding of
+  // mirrored sums without bound.
+  void observe(const Vectors& position, double t, double spacing) {
+    if (mirrors.empty()) return;
+    const Vectors moved = position - r0;
+    const Vec2 mean = moved.rowwise().mean();
+    window = window && (moved.colwise() - mean).colwise().norm().maxCoeff() <= spacing;
+    for (std::size_t i = 0; i < mirrors.size(); ++i) {
+      if (broken < 0 && window) {
+        const double mismatch = mirrors[i].mismatch(position);
+        if (mismatch > 1e-6 * spacing) {
+          broke = t;
+          broken = int(i);
+          at_break = mismatch;
+        }
+      }
+      if (int(i) == broken) end = mirrors[i].mismatch(position);
+    }
   }
-  const std::string kept_words = kept.empty()
-                                     ? "the kit could check no law of the forces here"
-                                     : "the forces kept what the kit checks (" + kept + ")";
-  const std::string step_words = step_comparison(d, start);
+};
+
+// The total energy, every few steps: when it had doubled, and how far the springs were
+// stretched then.
+struct EnergyWatch {
+  double start = 0.0, end = 0.0, reference = 0.0;  // J
+  double time = 0.0;                               // s, when `end` was measured
+  double doubled = not_a_number;                   // s, when it first passed twice the reference
+  double start_strain = 0.0;                       // the largest |L - l0| / l0 at the start
+  double strain_at_growth = not_a_number;          // ... when it had doubled
+
+  void observe(const Simulation& replay, const std::vector<Spring>& springs) {
+    end = replay.diagnostics().total();
+    time = replay.time();
+    if (std::isnan(doubled) && end > 2 * reference) {
+      doubled = time;
+      strain_at_growth = strain_of(springs, replay.particles().position);
+    }
+  }
+};
+
+// The steps of the run the budget lets the replay take, 0 for none.
+long replay_budget(int particles, long steps, const DiagnosisBudget& budget) {
+  if (particles > budget.particles || steps <= 0) return 0;
+  return std::min(steps, long(std::max(1.0, budget.particle_steps / std::max(particles, 1))));
+}
+
+// Everything the replay saw, each watch set on the start before any step.
+struct Evidence {
+  long budget_steps = 0;     // the steps the budget allows, 0: not replayed
+  long replayed = 0;         // the steps tried
+  double end_time = 0.0;     // s, the time of the last one
+  bool start_finite = true;  // whether the first forces were finite numbers
+  MomentumWatch momentum;
+  GravityWatch gravity;
+  SymmetryWatch symmetry;
+  EnergyWatch energy;
+  SignFit fit;  // the directions of the spring and damper forces, (1.1) and (1.2)
+
+  Evidence(const Scene& start, double start_time, long steps, const DiagnosisBudget& budget)
+      : budget_steps(replay_budget(start.particles.size(), steps, budget)),
+        end_time(start_time),
+        momentum(start.parameters, start.particles, start_time) {
+    gravity.mass = start.particles.mass;
+    gravity.g = momentum.g;
+    symmetry.mirrors = symmetric_mirrors(start);
+    symmetry.r0 = start.particles.position;
+    energy.time = start_time;
+    energy.start_strain = strain_of(start.springs, start.particles.position);
+  }
+};
+
+// The replay's look at the forces: whether they start finite, their directions against the
+// kit's springs and dampers (stage 0), what add_gravity added (stage 1).
+struct ForceLook {
+  Evidence& e;
+  const Simulation& replay;
+  SpringsApart apart;
+  Vectors kit_spring, kit_damper;  // N
+  long evaluations = 0;
+
+  ForceLook(Evidence& evidence, const Simulation& run, const Scene& start)
+      : e(evidence),
+        replay(run),
+        apart(start.springs, start.parameters.rows, start.parameters.cols) {}
+
+  void operator()(int stage, const Vectors& r, const Vectors& v, const Vectors& f) {
+    if (stage == 1) {
+      e.gravity.after_gravity(f, replay.time());
+      return;
+    }
+    e.gravity.after_springs(f);
+    if (++evaluations == 1) e.start_finite = f.allFinite();
+    if (e.fit.samples >= 400 || !f.allFinite() || !r.allFinite() || !v.allFinite()) return;
+    apart.forces(r, v, kit_spring, kit_damper);
+    e.fit.add(f, kit_spring, kit_damper);
+  }
+};
+
+// Replays the run's first steps (as many as the budget allows) with the same code, each law
+// watched.
+Evidence replay_run(const Scene& start, const Implementation& impl, double start_time, long steps,
+                    const DiagnosisBudget& budget) {
+  Evidence e(start, start_time, steps, budget);
+  if (e.budget_steps == 0) return e;
+  try {
+    DivergenceLimits quiet;
+    quiet.energy_growth = infinity;
+    quiet.energy_check_interval = INT_MAX;
+    quiet.diagnose = false;
+    Simulation replay(Scene(start), impl, quiet);
+    detail::ReplayAccess::start_at(replay, start_time);
+    ForceLook look(e, replay, start);
+    detail::ReplayAccess::watch_forces(
+        replay, [&look](int stage, const Vectors& r, const Vectors& v, const Vectors& f) {
+          look(stage, r, v, f);
+        });
+    e.energy.start = replay.diagnostics().total();
+    e.energy.reference = replay.reference_energy();
+    const int check_every = 8;
+    for (long k = 0; k < e.budget_steps; ++k) {
+      ++e.replayed;  // counted when tried: the run's last step may be the one that fails
+      replay.step();
+      const double t = replay.time();
+      e.end_time = t;
+      e.momentum.observe(replay.particles(), t, start_time, start.parameters);
+      e.symmetry.observe(replay.particles().position, t, start.parameters.spacing);
+      if (k % check_every == check_every - 1 || k + 1 == e.budget_steps)
+        e.energy.observe(replay, start.springs);
+    }
+  } catch (const std::exception&) {
+    // The replay diverged too (it ends where the run did) or its code failed: what it saw so far
+    // is the evidence.
+  }
+  return e;
+}
+
+// What the checks read: the run, the replay's evidence, and the words every check may use.
+struct Findings {
+  const Scene& start;
+  const Implementation& impl;
+  double start_time;  // s
+  long steps;
+  const DiagnosisBudget& budget;
+  const Evidence& e;
+  SignFit::Result signs;   // the forces as multiples of the kit's springs and dampers
+  std::string kept;        // the laws the replay checked and the forces kept, "" for none
+  std::string kept_words;  // ... in a clause
+  std::string step_words;  // h against the critical step (step_comparison)
+
   // After a broken law: whether h is to blame as well.
-  const auto about_h = [&] {
+  std::string about_h(const Diagnosis& d) const {
     if (beyond_critical(d))
       return " Besides, " + step_words + ": fix the forces first, then make h smaller.";
     if (d.forces_at_rest == ForcesAtRest::grow)
@@ -682,258 +754,442 @@ Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, do
     if (d.critical.source == LimitSource::not_computed)
       return d.forces_at_rest == ForcesAtRest::differ ? " (" + step_words + ".)" : std::string();
     return " The step is not the cause: " + step_words + ".";
-  };
+  }
+  // Whether the scene was too large to replay.
+  bool not_replayed() const {
+    return e.budget_steps == 0 && start.particles.size() > budget.particles;
+  }
+};
 
-  if (!start_finite) {
-    d.law = BrokenLaw::start_forces;
-    d.time = start_time;
-    d.equation = "(1.1)";
-    words << "Why: the spring forces at the start (t = " << start_time
-          << " s) are not finite numbers, before any step. ";
-    int coincident = -1;
-    for (std::size_t s = 0; s < start.springs.size() && coincident < 0; ++s) {
-      const Spring& spring = start.springs[s];
-      if ((particles.position.col(spring.p) - particles.position.col(spring.q)).norm() == 0.0)
-        coincident = int(s);
-    }
-    if (coincident >= 0) {
-      const Spring& s = start.springs[std::size_t(coincident)];
-      words << "Spring " << coincident << " joins particles " << s.p << " and " << s.q
-            << ", which start at the same place: the direction (r_p - r_q) / |r_p - r_q| in "
-               "equation (1.1) divides by the length 0. Where the ends coincide, give the spring "
-               "force 0.";
-    } else {
-      words << "Look for a division by a length or a distance that is 0 in equation (1.1), and "
-               "for values used before they are set.";
-    }
-  } else if (!std::isnan(momentum_broke) && free_of_outside) {
-    d.law = BrokenLaw::momentum;
-    d.time = momentum_broke;
-    d.amount = (momentum_end - p0).norm();
-    d.equation = "(2.4)";
-    words << "Why: the total momentum (the sum of m_i v_i) grew from " << significant(p0.norm())
-          << " kg*m/s to " << significant(momentum_end.norm()) << " kg*m/s by t = " << end_time
-          << " s (it first changed at t = " << momentum_broke
-          << " s), but with no gravity, wind, push or pin acting, nothing outside the springs can "
-             "change it: some spring pushes both of its ends the same way, or only one of them. "
-             "Add F_pq to particle p and subtract it from particle q, equation (2.4): F_qp = "
-             "-F_pq."
-          << about_h();
-  } else if (!std::isnan(momentum_broke) && gravity_only && std::isnan(gravity_wrong)) {
-    // add_gravity added m_i g to every particle: the springs changed the momentum.
-    d.law = BrokenLaw::momentum;
-    d.time = momentum_broke;
-    d.amount = deviation_end.norm();
-    d.equation = "(2.4)";
-    words << "Why: gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
-             "total mass times g, but by t = "
-          << end_time << " s it had changed by " << vector_text(deviation_end)
-          << " kg*m/s more than that (first at t = " << momentum_broke
-          << " s), and gravity was added right (m_i g, equation (5.2)): some spring pushes both "
-             "of its ends the same way, or only one of them. Add F_pq to particle p and subtract "
-             "it from particle q, equation (2.4): F_qp = -F_pq."
-          << about_h();
-  } else if ((!std::isnan(momentum_broke) && gravity_only) || !std::isnan(gravity_wrong)) {
-    d.law = BrokenLaw::gravity;
-    d.equation = "(5.2)";
-    words << "Why: ";
-    if (!std::isnan(momentum_broke) && gravity_only) {
-      d.time = momentum_broke;
-      d.amount = deviation_end.norm();
-      const double t = end_time - start_time;
-      const Vec2 expected = t * total_mass * g;
-      const Vec2 actual = momentum_end - p0;
-      const double share = actual.dot(g) / std::max(expected.dot(g), 1e-300);
-      words << "gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
-               "total mass times g, "
-            << vector_text(expected) << " kg*m/s by t = " << end_time << " s, but it changed by "
-            << vector_text(actual) << " kg*m/s (" << significant(share)
-            << " times that; it first differed at t = " << momentum_broke << " s). ";
-    }
-    if (!std::isnan(gravity_wrong)) {
-      if (std::isnan(d.time)) d.time = gravity_wrong;
-      const int i = gravity_particle;
-      const Vec2 expected = particles.mass[i] * g;
-      if (d.amount == 0.0) d.amount = (gravity_added - expected).norm();
-      words << "At t = " << gravity_wrong << " s add_gravity changed the force on particle " << i
-            << " by " << vector_text(gravity_added)
-            << " N, but its gravity is m_i g = " << vector_text(expected) << " N ("
-            << significant(particles.mass[i]) << " kg times g)";
-      if ((gravity_added - g).norm() <= 1e-9 * g.norm() && std::abs(particles.mass[i] - 1) > 1e-9)
-        words << ": that is g without the mass";
-      else if ((gravity_added + expected).norm() <= 1e-9 * expected.norm())
-        words << ": that is gravity pointing the wrong way";
-      else if ((gravity_added + gravity_spring - expected).norm() <=
-               1e-9 * (expected.norm() + gravity_spring.norm()))
-        words << ": the force was set to m_i g, and the spring forces already in it were lost";
-      words << ". ";
-    }
-    words << "Gravity on particle i is m_i g, equation (5.2): F_i += m_i g, added to the forces "
-             "already there."
-          << about_h();
-  } else if (!std::isnan(symmetry_broke)) {
-    d.law = BrokenLaw::symmetry;
-    d.time = symmetry_broke;
-    d.amount = asymmetry_end;
-    d.equation = spring_list_equations(p);
-    words << "Why: the start is " << broken_mirror->name
-          << " mirror symmetric, so the motion must stay its own mirror image, but at t = "
-          << symmetry_broke << " s a particle was " << significant(asymmetry_at_break)
-          << " m from the mirror image of its partner (" << significant(asymmetry_end)
-          << " m by t = " << end_time << " s): ";
-    const std::string spring = unmatched_spring(start.springs, *broken_mirror);
-    if (!spring.empty())
-      words << spring << ". ";
-    else
-      words << "the forces on mirrored particles differ. ";
-    words << "A spring is missing, doubled or joins the wrong particles: check the index formula "
-             "(2.1), index = i*cols + j, and the spring lists "
-          << spring_list_equations(p) << "." << about_h();
-  } else if (signs.exact && (signs.alpha < -0.5 || (signs.has_damping && signs.beta < -0.5) ||
-                             (signs.has_damping && std::abs(signs.beta) < 0.05))) {
-    d.law = BrokenLaw::energy;
-    d.time = energy_doubled;
-    const bool spring = signs.alpha < -0.5;
-    const bool damper_missing = !spring && std::abs(signs.beta) < 0.05;
-    d.amount = spring ? signs.alpha : signs.beta;
-    d.equation = spring ? "(1.1)" : "(1.2)";
-    words << "Why: ";
-    if (damper_missing) {
-      words << "the dampers give no force, so nothing removes energy: the damper force is "
-               "F_pq = -b (v_p - v_q), equation (1.2), added with the spring force as in (2.3).";
-    } else {
-      words << "springs and dampers can only store or remove energy, but the "
-            << (spring ? "spring" : "damper") << " forces point the wrong way (they are "
-            << significant(d.amount) << " times what equation " << d.equation
-            << " gives), so each step gives energy";
-      if (!std::isnan(energy_doubled))
-        words << ": the total energy rose from " << significant(start_energy) << " J to "
-              << significant(end_energy) << " J by t = " << energy_time << " s";
-      words << ". Check the sign in "
-            << (spring ? "F_pq = -k (|r_p - r_q| - l0) (r_p - r_q) / |r_p - r_q|, equation (1.1)"
-                       : "F_pq = -b (v_p - v_q), equation (1.2)")
-            << ", and how (2.3) adds it.";
-    }
-    words << about_h();
-  } else if (beyond_critical(d)) {
-    d.law = BrokenLaw::step_size;
-    d.time = start_time;
-    d.amount = d.critical.step > 0 ? d.step / d.critical.step : infinity;
-    words << "Why: " << step_words << ". ";
-    if (!kept.empty()) {
-      std::string sentence = kept_words + ". ";
-      sentence[0] = char(std::toupper(sentence[0]));
-      words << sentence;
-    }
-    if (d.critical.step > 0 && !drag_words(start, d.critical).empty())
-      words << "Make h smaller than " << significant(d.critical.step)
-            << " s, or wind.drag smaller or the mass larger: another integrator does not help.";
-    else if (d.critical.step > 0)
-      words << "Make h smaller than " << significant(d.critical.step)
-            << " s, or choose an integrator with a larger critical step (springlab-run "
-               "--stability lists them).";
-    else
-      words << "Choose another integrator (springlab-run --stability lists their critical "
-               "steps).";
-  } else if (budget_steps == 0 && n > budget.particles) {
-    d.law = BrokenLaw::none;
-    words << "Why: not replayed, the scene's " << n << " particles are more than the "
-          << budget.particles << " the diagnosis replays; " << step_words << ".";
-  } else if (d.forces_at_rest == ForcesAtRest::grow) {
-    d.law = BrokenLaw::none;
-    words << "Why: " << kept_words << "; " << step_words
-          << ". Look at the spring and damper forces, (1.1) and (1.2), and how (2.3) adds them: "
-             "forces that only store or remove energy make no motion grow.";
-  } else if (d.critical.source == LimitSource::not_computed) {
-    d.law = BrokenLaw::none;
-    words << "Why: " << kept_words << "; " << step_words
-          << ". If h is beyond the critical step, make h smaller or choose an integrator with a "
-             "larger one; if not, look for a spring or damper force that points the wrong way, "
-             "(1.1) and (1.2).";
+// What the replay could check on this scene, in words: "" when it checked nothing.
+std::string laws_kept(const Evidence& e) {
+  if (e.replayed == 0) return "";
+  std::vector<std::string> laws;
+  if (e.momentum.free_of_outside) laws.push_back("the total momentum, (2.4)");
+  if (e.momentum.gravity_only) laws.push_back("the momentum gravity gives, (5.2)");
+  if (!e.symmetry.mirrors.empty()) laws.push_back("the mirror symmetry of the start");
+  if (e.fit.samples > 0)
+    laws.push_back("the directions of the spring and damper forces, (1.1) and (1.2)");
+  std::string kept;
+  for (std::size_t i = 0; i < laws.size(); ++i)
+    kept += (i == 0 ? "" : i + 1 == laws.size() ? " and " : ", ") + laws[i];
+  return kept;
+}
+
+// The checks, in the order the diagnosis tries them: each one law (or, last, the step against the
+// code), true when it is the verdict, with its evidence in d and its sentences in words.
+using Check = bool (*)(const Findings& f, Diagnosis& d, std::ostream& words);
+
+// The spring forces are not finite numbers before any step: a spring whose ends coincide (1.1).
+bool start_forces_not_finite(const Findings& f, Diagnosis& d, std::ostream& words) {
+  if (f.e.start_finite) return false;
+  const std::vector<Spring>& springs = f.start.springs;
+  const Vectors& r = f.start.particles.position;
+  d.law = BrokenLaw::start_forces;
+  d.time = f.start_time;
+  d.equation = "(1.1)";
+  words << "Why: the spring forces at the start (t = " << f.start_time
+        << " s) are not finite numbers, before any step. ";
+  int coincident = -1;
+  for (std::size_t s = 0; s < springs.size() && coincident < 0; ++s)
+    if ((r.col(springs[s].p) - r.col(springs[s].q)).norm() == 0.0) coincident = int(s);
+  if (coincident >= 0) {
+    const Spring& s = springs[std::size_t(coincident)];
+    words << "Spring " << coincident << " joins particles " << s.p << " and " << s.q
+          << ", which start at the same place: the direction (r_p - r_q) / |r_p - r_q| in "
+             "equation (1.1) divides by the length 0. Where the ends coincide, give the spring "
+             "force 0.";
   } else {
-    const bool forces_right = signs.exact && std::abs(signs.alpha - 1.0) < 1e-6 &&
-                              (!signs.has_damping || std::abs(signs.beta - 1.0) < 1e-6);
-    const std::string forces_words =
-        forces_right ? "the forces are right (on " + std::to_string(fit.samples) +
+    words << "Look for a division by a length or a distance that is 0 in equation (1.1), and "
+             "for values used before they are set.";
+  }
+  return true;
+}
+
+// Nothing outside the springs acts, yet the total momentum changed: F_qp = -F_pq broken (2.4).
+bool momentum_not_kept(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const MomentumWatch& m = f.e.momentum;
+  if (std::isnan(m.broke) || !m.free_of_outside) return false;
+  d.law = BrokenLaw::momentum;
+  d.time = m.broke;
+  d.amount = (m.end - m.p0).norm();
+  d.equation = "(2.4)";
+  words << "Why: the total momentum (the sum of m_i v_i) grew from " << significant(m.p0.norm())
+        << " kg*m/s to " << significant(m.end.norm()) << " kg*m/s by t = " << f.e.end_time
+        << " s (it first changed at t = " << m.broke
+        << " s), but with no gravity, wind, push or pin acting, nothing outside the springs can "
+           "change it: some spring pushes both of its ends the same way, or only one of them. "
+           "Add F_pq to particle p and subtract it from particle q, equation (2.4): F_qp = "
+           "-F_pq."
+        << f.about_h(d);
+  return true;
+}
+
+// Gravity alone acts and add_gravity added m_i g to every particle, yet the momentum changed by
+// more than gravity gives: the springs changed it (2.4).
+bool momentum_beyond_gravity(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const MomentumWatch& m = f.e.momentum;
+  if (std::isnan(m.broke) || !m.gravity_only || !std::isnan(f.e.gravity.wrong)) return false;
+  d.law = BrokenLaw::momentum;
+  d.time = m.broke;
+  d.amount = m.deviation_end.norm();
+  d.equation = "(2.4)";
+  words << "Why: gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
+           "total mass times g, but by t = "
+        << f.e.end_time << " s it had changed by " << vector_text(m.deviation_end)
+        << " kg*m/s more than that (first at t = " << m.broke
+        << " s), and gravity was added right (m_i g, equation (5.2)): some spring pushes both "
+           "of its ends the same way, or only one of them. Add F_pq to particle p and subtract "
+           "it from particle q, equation (2.4): F_qp = -F_pq."
+        << f.about_h(d);
+  return true;
+}
+
+// The momentum gravity gives against the change the replay saw, in a sentence.
+void gravity_momentum_words(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const MomentumWatch& m = f.e.momentum;
+  d.time = m.broke;
+  d.amount = m.deviation_end.norm();
+  const double t = f.e.end_time - f.start_time;
+  const Vec2 expected = t * m.total_mass * m.g;
+  const Vec2 actual = m.end - m.p0;
+  const double share = actual.dot(m.g) / std::max(expected.dot(m.g), 1e-300);
+  words << "gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
+           "total mass times g, "
+        << vector_text(expected) << " kg*m/s by t = " << f.e.end_time << " s, but it changed by "
+        << vector_text(actual) << " kg*m/s (" << significant(share)
+        << " times that; it first differed at t = " << m.broke << " s). ";
+}
+
+// What add_gravity added to one particle against m_i g, and the likely mistake, in a sentence.
+void gravity_added_words(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const GravityWatch& gw = f.e.gravity;
+  const Vec2& g = gw.g;
+  if (std::isnan(d.time)) d.time = gw.wrong;
+  const int i = gw.particle;
+  const double mass = f.start.particles.mass[i];
+  const Vec2 expected = mass * g;
+  if (d.amount == 0.0) d.amount = (gw.added - expected).norm();
+  words << "At t = " << gw.wrong << " s add_gravity changed the force on particle " << i << " by "
+        << vector_text(gw.added) << " N, but its gravity is m_i g = " << vector_text(expected)
+        << " N (" << significant(mass) << " kg times g)";
+  if ((gw.added - g).norm() <= 1e-9 * g.norm() && std::abs(mass - 1) > 1e-9)
+    words << ": that is g without the mass";
+  else if ((gw.added + expected).norm() <= 1e-9 * expected.norm())
+    words << ": that is gravity pointing the wrong way";
+  else if ((gw.added + gw.spring - expected).norm() <= 1e-9 * (expected.norm() + gw.spring.norm()))
+    words << ": the force was set to m_i g, and the spring forces already in it were lost";
+  words << ". ";
+}
+
+// Gravity is not m_i g added to the forces (5.2): the momentum it gives is wrong, or add_gravity
+// was seen adding something else.
+bool gravity_not_m_g(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const MomentumWatch& m = f.e.momentum;
+  const bool momentum_wrong = !std::isnan(m.broke) && m.gravity_only;
+  if (!momentum_wrong && std::isnan(f.e.gravity.wrong)) return false;
+  d.law = BrokenLaw::gravity;
+  d.equation = "(5.2)";
+  words << "Why: ";
+  if (momentum_wrong) gravity_momentum_words(f, d, words);
+  if (!std::isnan(f.e.gravity.wrong)) gravity_added_words(f, d, words);
+  words << "Gravity on particle i is m_i g, equation (5.2): F_i += m_i g, added to the forces "
+           "already there."
+        << f.about_h(d);
+  return true;
+}
+
+// A mirror-symmetric start whose motion stopped being its own mirror image: a spring missing,
+// doubled or misplaced (2.1) and the spring lists.
+bool symmetry_broken(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const SymmetryWatch& s = f.e.symmetry;
+  if (std::isnan(s.broke)) return false;
+  const Mirror& mirror = s.mirrors[std::size_t(s.broken)];
+  const SceneParameters& p = f.start.parameters;
+  d.law = BrokenLaw::symmetry;
+  d.time = s.broke;
+  d.amount = s.end;
+  d.equation = spring_list_equations(p);
+  words << "Why: the start is " << mirror.name
+        << " mirror symmetric, so the motion must stay its own mirror image, but at t = " << s.broke
+        << " s a particle was " << significant(s.at_break)
+        << " m from the mirror image of its partner (" << significant(s.end)
+        << " m by t = " << f.e.end_time << " s): ";
+  const std::string spring = unmatched_spring(f.start.springs, mirror);
+  if (!spring.empty())
+    words << spring << ". ";
+  else
+    words << "the forces on mirrored particles differ. ";
+  words << "A spring is missing, doubled or joins the wrong particles: check the index formula "
+           "(2.1), index = i*cols + j, and the spring lists "
+        << spring_list_equations(p) << "." << f.about_h(d);
+  return true;
+}
+
+// The spring or damper forces point the wrong way, or the dampers give none: energy is given,
+// or nothing removes it (1.1), (1.2).
+bool force_signs_give_energy(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const SignFit::Result& signs = f.signs;
+  if (!(signs.exact && (signs.alpha < -0.5 || (signs.has_damping && signs.beta < -0.5) ||
+                        (signs.has_damping && std::abs(signs.beta) < 0.05))))
+    return false;
+  const EnergyWatch& energy = f.e.energy;
+  d.law = BrokenLaw::energy;
+  d.time = energy.doubled;
+  const bool spring = signs.alpha < -0.5;
+  const bool damper_missing = !spring && std::abs(signs.beta) < 0.05;
+  d.amount = spring ? signs.alpha : signs.beta;
+  d.equation = spring ? "(1.1)" : "(1.2)";
+  words << "Why: ";
+  if (damper_missing) {
+    words << "the dampers give no force, so nothing removes energy: the damper force is "
+             "F_pq = -b (v_p - v_q), equation (1.2), added with the spring force as in (2.3).";
+  } else {
+    words << "springs and dampers can only store or remove energy, but the "
+          << (spring ? "spring" : "damper") << " forces point the wrong way (they are "
+          << significant(d.amount) << " times what equation " << d.equation
+          << " gives), so each step gives energy";
+    if (!std::isnan(energy.doubled))
+      words << ": the total energy rose from " << significant(energy.start) << " J to "
+            << significant(energy.end) << " J by t = " << energy.time << " s";
+    words << ". Check the sign in "
+          << (spring ? "F_pq = -k (|r_p - r_q| - l0) (r_p - r_q) / |r_p - r_q|, equation (1.1)"
+                     : "F_pq = -b (v_p - v_q), equation (1.2)")
+          << ", and how (2.3) adds it.";
+  }
+  words << f.about_h(d);
+  return true;
+}
+
+// Every law kept, and h beyond the critical step of the forces that ran: h is the cause.
+bool step_beyond_critical(const Findings& f, Diagnosis& d, std::ostream& words) {
+  if (!beyond_critical(d)) return false;
+  d.law = BrokenLaw::step_size;
+  d.time = f.start_time;
+  d.amount = d.critical.step > 0 ? d.step / d.critical.step : infinity;
+  words << "Why: " << f.step_words << ". ";
+  if (!f.kept.empty()) {
+    std::string sentence = f.kept_words + ". ";
+    sentence[0] = char(std::toupper(sentence[0]));
+    words << sentence;
+  }
+  if (d.critical.step > 0 && !drag_words(f.start, d.critical).empty())
+    words << "Make h smaller than " << significant(d.critical.step)
+          << " s, or wind.drag smaller or the mass larger: another integrator does not help.";
+  else if (d.critical.step > 0)
+    words << "Make h smaller than " << significant(d.critical.step)
+          << " s, or choose an integrator with a larger critical step (springlab-run "
+             "--stability lists them).";
+  else
+    words << "Choose another integrator (springlab-run --stability lists their critical "
+             "steps).";
+  return true;
+}
+
+// The scene is beyond the replay's budget: only the step limit can be said.
+bool scene_not_replayed(const Findings& f, Diagnosis& d, std::ostream& words) {
+  if (!f.not_replayed()) return false;
+  d.law = BrokenLaw::none;
+  words << "Why: not replayed, the scene's " << f.start.particles.size()
+        << " particles are more than the " << f.budget.particles << " the diagnosis replays; "
+        << f.step_words << ".";
+  return true;
+}
+
+// The code's own forces, measured about rest, make motion grow in exact time: no h helps.
+bool own_forces_grow(const Findings& f, Diagnosis& d, std::ostream& words) {
+  if (d.forces_at_rest != ForcesAtRest::grow) return false;
+  d.law = BrokenLaw::none;
+  words << "Why: " << f.kept_words << "; " << f.step_words
+        << ". Look at the spring and damper forces, (1.1) and (1.2), and how (2.3) adds them: "
+           "forces that only store or remove energy make no motion grow.";
+  return true;
+}
+
+// No critical step is known to compare h with: both causes are named.
+bool limit_unknown(const Findings& f, Diagnosis& d, std::ostream& words) {
+  if (d.critical.source != LimitSource::not_computed) return false;
+  d.law = BrokenLaw::none;
+  words << "Why: " << f.kept_words << "; " << f.step_words
+        << ". If h is beyond the critical step, make h smaller or choose an integrator with a "
+           "larger one; if not, look for a spring or damper force that points the wrong way, "
+           "(1.1) and (1.2).";
+  return true;
+}
+
+// Below the critical step with every law kept: what the forces are against (1.1), (1.2) and
+// (2.3), the motion's size against the linear theory, and the energy's growth, in words.
+struct BelowLimit {
+  bool forces_right = false;  // exactly the kit's springs and dampers
+  std::string forces_words, large_motion, grown;
+
+  explicit BelowLimit(const Findings& f) {
+    const SignFit::Result& signs = f.signs;
+    const EnergyWatch& energy = f.e.energy;
+    const int samples = f.e.fit.samples;
+    forces_right = signs.exact && std::abs(signs.alpha - 1.0) < 1e-6 &&
+                   (!signs.has_damping || std::abs(signs.beta - 1.0) < 1e-6);
+    forces_words =
+        forces_right ? "the forces are right (on " + std::to_string(samples) +
                            " evaluations they are exactly what (1.1), (1.2) and (2.3) give)"
         : signs.exact ? "the forces are " + significant(signs.alpha) + " times the spring forces" +
                             (signs.has_damping
                                  ? " plus " + significant(signs.beta) + " times the damper forces"
                                  : std::string()) +
-                            " that (1.1), (1.2) and (2.3) give (on " + std::to_string(fit.samples) +
+                            " that (1.1), (1.2) and (2.3) give (on " + std::to_string(samples) +
                             " evaluations)"
                       : "the forces kept what the kit checks";
-    const std::string large_motion =
+    large_motion =
         "that critical step holds for small motions about rest, and here the springs start "
         "stretched or shrunk by up to " +
-        significant(100.0 * start_strain) + " % of their rest length" +
-        (std::isnan(strain_at_growth)
+        significant(100.0 * energy.start_strain) + " % of their rest length" +
+        (std::isnan(energy.strain_at_growth)
              ? std::string()
-             : " (" + significant(100.0 * strain_at_growth) +
-                   " % when the energy had doubled, t = " + significant(energy_doubled) + " s)") +
+             : " (" + significant(100.0 * energy.strain_at_growth) +
+                   " % when the energy had doubled, t = " + significant(energy.doubled) + " s)") +
         ", beyond what the linear theory behind it describes";
-    // Before the code under test is blamed, or h: the kit's reference on this scene at this h.
-    const std::optional<bool> reference_too =
-        reference_diverges(p, impl, start_time + double(steps) * p.step, budget);
-    const std::string grown = std::isnan(energy_doubled)
-                                  ? std::string()
-                                  : "the total energy rose from " + significant(start_energy) +
-                                        " J to " + significant(end_energy) +
-                                        " J by t = " + significant(energy_time) + " s; ";
-    if (reference_too && *reference_too) {
-      d.law = BrokenLaw::step_size;
-      d.time = std::isnan(energy_doubled) ? start_time : energy_doubled;
-      d.amount = d.critical.step > 0 ? d.step / d.critical.step : infinity;
-      words << "Why: " << grown
-            << (impl.student_task == 0 ? "this is the kit's reference code, and "
-                                       : "the kit's reference code diverges too on this scene at "
-                                         "this h, so ")
-            << "the step is the cause, not the code: " << step_words << ", but " << large_motion
-            << ". Make h smaller (a half or less of the critical step), or start closer to rest.";
-    } else if (reference_too) {  // the reference runs as long without diverging
-      d.law = forces_right ? BrokenLaw::step_function : BrokenLaw::energy;
-      d.time = std::isnan(energy_doubled) ? start_time : energy_doubled;
-      d.equation = forces_right ? "" : "(2.3)";
-      words << "Why: " << grown << "the kit's reference code runs this scene at this h for as "
-            << "long without diverging, so your code is the cause, not h (" << step_words
-            << "): " << forces_words << ". ";
-      const long reference_springs = long(reference_springs_of(p));
-      if (forces_right && reference_springs >= 0 && reference_springs != long(start.springs.size()))
-        words << "Your code made " << start.springs.size() << " springs where the reference makes "
-              << reference_springs << ": check the spring lists " << spring_list_equations(p)
-              << ".";
-      else if (forces_right && impl.student_task == 1 && p.integrator == "explicit-euler")
-        words << euler_step_words;
-      else if (forces_right && impl.student_task == 4 && p.integrator == "verlet")
-        words << verlet_step_words;
-      else if (!forces_right)
-        words << "Check (1.1), (1.2) and how (2.3) adds them.";
-    } else if (!std::isnan(energy_doubled) && !forces_right && signs.exact) {
-      d.law = BrokenLaw::energy;
-      d.time = energy_doubled;
-      d.amount = end_energy - start_energy;
-      d.equation = "(2.3)";
-      words << "Why: " << grown << "although " << step_words << ", " << forces_words
-            << ". Check (1.1), (1.2) and how (2.3) adds them.";
-    } else {
-      d.law = BrokenLaw::step_function;
-      d.time = std::isnan(energy_doubled) ? start_time : energy_doubled;
-      words << "Why: " << grown << (forces_right ? forces_words : kept_words) << "; " << step_words
-            << ". ";
-      if (impl.student_task == 1 && p.integrator == "explicit-euler")
-        words << euler_step_words;
-      else if (impl.student_task == 4 && p.integrator == "verlet")
-        words << verlet_step_words;
-      else
-        words << "But " << large_motion << ": a smaller h helps.";
-    }
+    grown = std::isnan(energy.doubled)
+                ? std::string()
+                : "the total energy rose from " + significant(energy.start) + " J to " +
+                      significant(energy.end) + " J by t = " + significant(energy.time) + " s; ";
   }
-  if (budget_steps > 0 && !d.replayed_all && replayed < steps && d.law != BrokenLaw::start_forces)
+};
+
+// Where only the code's step can be the cause, what to look at for its task, "" if none.
+const char* step_advice(const Findings& f) {
+  const SceneParameters& p = f.start.parameters;
+  if (f.impl.student_task == 1 && p.integrator == "explicit-euler") return euler_step_words;
+  if (f.impl.student_task == 4 && p.integrator == "verlet") return verlet_step_words;
+  return nullptr;
+}
+
+// The kit's reference diverges too: h is the cause, though below the small-motion limit.
+void reference_diverges_too(const Findings& f, const BelowLimit& b, Diagnosis& d,
+                            std::ostream& words) {
+  const double doubled = f.e.energy.doubled;
+  d.law = BrokenLaw::step_size;
+  d.time = std::isnan(doubled) ? f.start_time : doubled;
+  d.amount = d.critical.step > 0 ? d.step / d.critical.step : infinity;
+  words << "Why: " << b.grown
+        << (f.impl.student_task == 0 ? "this is the kit's reference code, and "
+                                     : "the kit's reference code diverges too on this scene at "
+                                       "this h, so ")
+        << "the step is the cause, not the code: " << f.step_words << ", but " << b.large_motion
+        << ". Make h smaller (a half or less of the critical step), or start closer to rest.";
+}
+
+// The kit's reference runs as long without diverging: the code under test is the cause.
+void reference_runs(const Findings& f, const BelowLimit& b, Diagnosis& d, std::ostream& words) {
+  const SceneParameters& p = f.start.parameters;
+  const double doubled = f.e.energy.doubled;
+  d.law = b.forces_right ? BrokenLaw::step_function : BrokenLaw::energy;
+  d.time = std::isnan(doubled) ? f.start_time : doubled;
+  d.equation = b.forces_right ? "" : "(2.3)";
+  words << "Why: " << b.grown << "the kit's reference code runs this scene at this h for as "
+        << "long without diverging, so your code is the cause, not h (" << f.step_words
+        << "): " << b.forces_words << ". ";
+  const long reference_springs = long(reference_springs_of(p));
+  const std::size_t springs = f.start.springs.size();
+  if (b.forces_right && reference_springs >= 0 && reference_springs != long(springs))
+    words << "Your code made " << springs << " springs where the reference makes "
+          << reference_springs << ": check the spring lists " << spring_list_equations(p) << ".";
+  else if (b.forces_right && step_advice(f))
+    words << step_advice(f);
+  else if (!b.forces_right)
+    words << "Check (1.1), (1.2) and how (2.3) adds them.";
+}
+
+// No reference to compare with, and the energy grew with forces that are not (1.1) and (1.2)'s.
+bool energy_grew_with_wrong_forces(const Findings& f, const BelowLimit& b, Diagnosis& d,
+                                   std::ostream& words) {
+  const EnergyWatch& energy = f.e.energy;
+  if (std::isnan(energy.doubled) || b.forces_right || !f.signs.exact) return false;
+  d.law = BrokenLaw::energy;
+  d.time = energy.doubled;
+  d.amount = energy.end - energy.start;
+  d.equation = "(2.3)";
+  words << "Why: " << b.grown << "although " << f.step_words << ", " << b.forces_words
+        << ". Check (1.1), (1.2) and how (2.3) adds them.";
+  return true;
+}
+
+// No reference to compare with and nothing wrong seen: the step function, or the motion's size.
+void step_function_or_large_motion(const Findings& f, const BelowLimit& b, Diagnosis& d,
+                                   std::ostream& words) {
+  const double doubled = f.e.energy.doubled;
+  d.law = BrokenLaw::step_function;
+  d.time = std::isnan(doubled) ? f.start_time : doubled;
+  words << "Why: " << b.grown << (b.forces_right ? b.forces_words : f.kept_words) << "; "
+        << f.step_words << ". ";
+  if (step_advice(f))
+    words << step_advice(f);
+  else
+    words << "But " << b.large_motion << ": a smaller h helps.";
+}
+
+// Below the critical step with every law kept (the last check, always a verdict): before the code
+// under test is blamed, or h, the kit's reference on this scene at this h.
+bool below_critical(const Findings& f, Diagnosis& d, std::ostream& words) {
+  const BelowLimit b(f);
+  const SceneParameters& p = f.start.parameters;
+  const std::optional<bool> reference_too =
+      reference_diverges(p, f.impl, f.start_time + double(f.steps) * p.step, f.budget);
+  if (reference_too && *reference_too)
+    reference_diverges_too(f, b, d, words);
+  else if (reference_too)
+    reference_runs(f, b, d, words);
+  else if (!energy_grew_with_wrong_forces(f, b, d, words))
+    step_function_or_large_motion(f, b, d, words);
+  return true;
+}
+
+constexpr Check checks[] = {start_forces_not_finite, momentum_not_kept,  momentum_beyond_gravity,
+                            gravity_not_m_g,         symmetry_broken,    force_signs_give_energy,
+                            step_beyond_critical,    scene_not_replayed, own_forces_grow,
+                            limit_unknown,           below_critical};
+
+// How much of the run the diagnosis watched, where not all of it.
+void replay_notes(const Findings& f, const Diagnosis& d, std::ostream& words) {
+  const Evidence& e = f.e;
+  if (e.budget_steps > 0 && !d.replayed_all && e.replayed < f.steps &&
+      d.law != BrokenLaw::start_forces)
     words << " (The diagnosis watched the first " << d.replayed << " s of the run only.)";
-  if (budget_steps == 0 && n > budget.particles && d.law != BrokenLaw::none)
-    words << " (The run was not replayed: its " << n << " particles are more than the "
-          << budget.particles << " the diagnosis replays, so the laws of the forces were not "
-          << "checked.)";
+  if (f.not_replayed() && d.law != BrokenLaw::none)
+    words << " (The run was not replayed: its " << f.start.particles.size()
+          << " particles are more than the " << f.budget.particles
+          << " the diagnosis replays, so the laws of the forces were not checked.)";
+}
+
+}  // namespace
+
+Diagnosis diagnose_divergence(const Scene& start, const Implementation& impl, double start_time,
+                              long steps, const DiagnosisBudget& budget) {
+  Diagnosis d;
+  d.step = start.parameters.step;
+  d.critical = scene_critical_step(start, budget, &d.growth);
+  limit_of_forces_that_ran(d, start, impl, budget);
+
+  const Evidence e = replay_run(start, impl, start_time, steps, budget);
+  d.replayed = e.end_time - start_time;
+  d.replayed_all = e.budget_steps > 0 && e.replayed == steps;
+
+  const std::string kept = laws_kept(e);
+  const Findings f{.start = start,
+                   .impl = impl,
+                   .start_time = start_time,
+                   .steps = steps,
+                   .budget = budget,
+                   .e = e,
+                   .signs = e.fit.solve(),
+                   .kept = kept,
+                   .kept_words = kept.empty()
+                                     ? "the kit could check no law of the forces here"
+                                     : "the forces kept what the kit checks (" + kept + ")",
+                   .step_words = step_comparison(d, start)};
+  std::ostringstream words;
+  for (const Check check : checks)
+    if (check(f, d, words)) break;
+  replay_notes(f, d, words);
   d.words = words.str();
   return d;
 }

@@ -249,26 +249,7 @@ class Xpbd final : public Integrator {
     const std::size_t kept = parameters_.iterations > 1 ? springs.size() : 0;
     lambda_.assign(kept, 0.0);
     mu_.assign(kept, 0.0);
-    // Greedy colouring: a bit per colour used at each particle. A spring with every one of the
-    // 64 colours taken at its ends (a particle with more than 63 springs) goes into a last group
-    // that a pass visits in list order on one thread.
-    std::vector<std::uint64_t> used(std::size_t(n), 0);
-    std::vector<int> colour(springs.size());
-    int colours = 0;
-    for (std::size_t i = 0; i < springs.size(); ++i) {
-      const auto p = std::size_t(springs[i].p), q = std::size_t(springs[i].q);
-      const std::uint64_t taken = used[p] | used[q];
-      const int c = taken == ~std::uint64_t(0) ? 64 : std::countr_one(taken);
-      if (c < 64) used[p] |= std::uint64_t(1) << c, used[q] |= std::uint64_t(1) << c;
-      colour[i] = c;
-      colours = std::max(colours, c + 1);
-    }
-    group_start_.assign(std::size_t(colours) + 1, 0);
-    for (int c : colour)
-      ++group_start_[std::size_t(c) + 1];
-    for (std::size_t c = 1; c < group_start_.size(); ++c)
-      group_start_[c] += group_start_[c - 1];
-    last_group_sequential_ = colours == 65;
+    const std::vector<int> colour = colour_springs(springs, n);
     std::vector<long> next(group_start_.begin(), group_start_.end() - 1);
     struct Placed {
       Ends ends;
@@ -312,6 +293,33 @@ class Xpbd final : public Integrator {
           runs_.push_back({i, i, placed.kind});
         runs_.back().end = i + 1;
       }
+  }
+
+  // Each spring's colour, no two springs of a colour sharing a particle (but the last group's
+  // when last_group_sequential_), and group_start_: where each colour's springs start in pass
+  // order.
+  std::vector<int> colour_springs(const std::vector<Spring>& springs, long n) {
+    // Greedy colouring: a bit per colour used at each particle. A spring with every one of the
+    // 64 colours taken at its ends (a particle with more than 63 springs) goes into a last group
+    // that a pass visits in list order on one thread.
+    std::vector<std::uint64_t> used(std::size_t(n), 0);
+    std::vector<int> colour(springs.size());
+    int colours = 0;
+    for (std::size_t i = 0; i < springs.size(); ++i) {
+      const auto p = std::size_t(springs[i].p), q = std::size_t(springs[i].q);
+      const std::uint64_t taken = used[p] | used[q];
+      const int c = taken == ~std::uint64_t(0) ? 64 : std::countr_one(taken);
+      if (c < 64) used[p] |= std::uint64_t(1) << c, used[q] |= std::uint64_t(1) << c;
+      colour[i] = c;
+      colours = std::max(colours, c + 1);
+    }
+    group_start_.assign(std::size_t(colours) + 1, 0);
+    for (int c : colour)
+      ++group_start_[std::size_t(c) + 1];
+    for (std::size_t c = 1; c < group_start_.size(); ++c)
+      group_start_[c] += group_start_[c - 1];
+    last_group_sequential_ = colours == 65;
+    return colour;
   }
 
   // One Gauss–Seidel pass, colour by colour (the file's comment, step 2).

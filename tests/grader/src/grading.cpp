@@ -154,6 +154,96 @@ void forget_task(Calibration& times, int task) {
     std::erase_if(tests, [task](const auto& entry) { return entry.second.task == task; });
 }
 
+// The times `read` holds into `times`, and the signatures of the tasks whose lines are kept: a
+// task with a time of 0 is measured again (unless the times were shipped, never measured here).
+std::map<int, std::string> take_cached(const CacheContents& read, bool shipped,
+                                       Calibration& times) {
+  std::map<int, std::string> signatures = read.signatures;
+  for (const auto& [variant, tests] : read.times)
+    for (const auto& [name, time] : tests)
+      times[variant][name] = time;
+  if (!shipped)
+    for (const int t : read.unmeasured)
+      signatures.erase(t);
+  return signatures;
+}
+
+// The tasks graded whose programs changed since their times were measured, or never were: their
+// times forgotten, their new signatures in `signatures`.
+std::vector<int> tasks_to_measure(const Kit& kit, const std::vector<TestInfo>& tests,
+                                  const std::vector<int>& tasks,
+                                  std::map<int, std::string>& signatures, Calibration& times) {
+  std::vector<int> missing;
+  for (const int task : tasks) {
+    const std::string signature = task_signature(kit, tests, task);
+    if (signatures.count(task) > 0 && signatures[task] == signature) continue;
+    forget_task(times, task);
+    signatures[task] = signature;
+    missing.push_back(task);
+  }
+  return missing;
+}
+
+// The reference's times per test from its grading into `times`; throws when it failed a test.
+void take_measured(const SubmissionResult& reference, Calibration& times) {
+  if (const std::string fault = reference.fault(); !fault.empty())
+    throw std::runtime_error("the reference's times could not be measured: " + fault);
+  std::string failures;
+  for (const auto& [task, result] : reference.tasks)
+    for (const TestResult& t : result.tests)
+      if (!t.passed)
+        failures += "\n  task " + std::to_string(task) + ": " + t.test->name + ": " +
+                    (result.problem.empty() ? t.message : result.problem);
+      else {
+        times["plain"][t.test->name] = {task, t.seconds};
+        times["sanitized"][t.test->name] = {task, t.sanitized_seconds};
+      }
+  if (!failures.empty())
+    throw std::runtime_error(
+        "the kit's own solutions fail tests, so nothing can be graded "
+        "fairly (rebuild the kit; if it persists, the kit is broken):" +
+        failures);
+}
+
+// Another grading may have written the cache since it was read (two started side by side, each
+// measuring its own tasks): the tasks `now` holds that this one does not grade (`graded`) are
+// taken as they are now, so that neither drops the other's; the tasks this one grades keep the
+// times of its own programs. (Only the moment between this reading and the rename of the cache
+// is left for another grading to slip into.)
+void take_others(const CacheContents& now, const std::vector<int>& graded,
+                 std::map<int, std::string>& signatures, Calibration& times) {
+  for (const auto& [task, signature] : now.signatures) {
+    if (std::ranges::find(graded, task) != graded.end() || now.unmeasured.count(task) > 0) continue;
+    signatures[task] = signature;
+    forget_task(times, task);
+    for (const auto& [variant, tests] : now.times)
+      for (const auto& [name, time] : tests)
+        if (time.task == task) times[variant][name] = time;
+  }
+}
+
+// Writes the cache whole, then renames it: another grader reading it meanwhile sees the old or the
+// new. A cache that cannot be written costs only the measurement again next time (said to
+// `progress`; false).
+bool write_cache(const fs::path& cache, const std::map<int, std::string>& signatures,
+                 const Calibration& times,
+                 const std::function<void(const std::string&)>& progress) {
+  std::ostringstream out;
+  for (const auto& [task, signature] : signatures)
+    out << "task " << task << ' ' << signature << '\n';
+  out << "---\n";
+  for (const auto& [name, variant] : times)
+    for (const auto& [test, time] : variant)
+      out << name << ' ' << time.seconds << ' ' << time.task << ' ' << test << '\n';
+  try {
+    write_file(cache, out.str());
+  } catch (const std::runtime_error& error) {
+    if (progress) progress(std::string(error.what()) + " (measured again next time)");
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 double SubmissionResult::points() const {
@@ -854,116 +944,156 @@ class Grader::Pipeline {
   }
 };
 
+// One run of the pipeline over the submissions: each task's copy, a build per distinct copy (copies
+// with the same digest, checked byte for byte, share one), the builds started a few at a time,
+// and each submission's results as its tasks finish.
+class Grader::Batch {
+ public:
+  Batch(const Grader& grader, Pipeline& pipeline, const std::vector<Submission>& submissions,
+        const std::function<void(const SubmissionResult&, int)>& task_done,
+        const std::function<void(const SubmissionResult&)>& submission_done)
+      : results(submissions.size()),
+        g_(grader),
+        pipeline_(pipeline),
+        submissions_(submissions),
+        task_done_(task_done),
+        submission_done_(submission_done),
+        tasks_open_(submissions.size(), int(grader.settings_.tasks.size())),
+        most_active_(2 * grader.settings_.jobs + 1) {}
+
+  std::vector<SubmissionResult> results;  // by submission, filled as their tasks finish
+
+  // Copies each task of submission i and queues its build (or joins an equal copy's).
+  void add(std::size_t i) {
+    results[i].submission = submissions_[i];
+    // Named by number only: no submission's name ends up in a path a command sees.
+    const fs::path copies = g_.settings_.work / "submissions" / std::to_string(i + 1);
+    for (const int task : g_.settings_.tasks)
+      add_task(i, task, copies);
+  }
+
+  // A few builds at a time, in the order of the submissions: enough to keep every process slot
+  // busy, and the work folder holds the objects of these few only (each is removed when its
+  // build is done), however large the class; the first submissions are done first.
+  void start_next() {
+    while (active_ < most_active_ && !waiting_.empty()) {
+      std::shared_ptr<TaskBuild> next = waiting_.front();
+      waiting_.pop_front();
+      ++active_;
+      next->on_finish.push_back([this] {
+        --active_;
+        start_next();
+      });
+      pipeline_.start(next);
+    }
+  }
+
+ private:
+  const Grader& g_;
+  Pipeline& pipeline_;
+  const std::vector<Submission>& submissions_;
+  const std::function<void(const SubmissionResult&, int)>& task_done_;
+  const std::function<void(const SubmissionResult&)>& submission_done_;
+  std::vector<int> tasks_open_;
+  std::map<std::pair<int, std::string>, std::vector<std::shared_ptr<TaskBuild>>> builds_;
+  int build_count_ = 0;
+  std::deque<std::shared_ptr<TaskBuild>> waiting_;
+  int active_ = 0;
+  const int most_active_;
+
+  void add_task(std::size_t i, int task, const fs::path& copies) {
+    if (!submissions_[i].fault.empty()) return not_graded(i, task, submissions_[i].fault);
+    TaskCopy copy;
+    try {
+      copy = copy_task(submissions_[i], task, g_.kit_, copies);
+    } catch (const fs::filesystem_error& error) {
+      // The submission's files could not be read (gone, or not readable), or the work folder
+      // not written: the grader's problem, never the student's grade. What was copied goes, so
+      // that the others still have room.
+      const std::string full = work_folder_full(g_.settings_.work);
+      std::error_code ignored;
+      fs::remove_all(copies / "tasks" / g_.kit_.task_folder(task), ignored);
+      return not_graded(i, task,
+                        full.empty()
+                            ? "the grader could not copy the files: " + escaped(error.what())
+                            : full + " (" + escaped(error.what()) + ")");
+    }
+    bool is_new = false;
+    const std::shared_ptr<TaskBuild> b = build_of(task, copy, is_new);
+    b->on_finish.push_back([this, i, task, b, notes = copy.notes] {
+      TaskResult& r = results[i].tasks[task];
+      r = b->result;
+      r.task = task;
+      r.notes = notes;
+      done(i, task);
+    });
+    if (is_new) waiting_.push_back(b);
+  }
+
+  // The build of an equal copy graded already, or a new one (is_new).
+  std::shared_ptr<TaskBuild> build_of(int task, const TaskCopy& copy, bool& is_new) {
+    std::vector<std::shared_ptr<TaskBuild>>& same = builds_[{task, copy.digest}];
+    std::shared_ptr<TaskBuild> b;
+    if (copy.problem.empty())
+      for (const auto& other : same)
+        if (other->problem.empty() && same_files(other->copy, copy.folder)) b = other;
+    if (b) return b;
+    is_new = true;
+    b = std::make_shared<TaskBuild>();
+    b->task = task;
+    b->copy = copy.folder;
+    b->problem = copy.problem;
+    b->folder = g_.settings_.work / "builds" / std::to_string(++build_count_);
+    for (const std::string& file : g_.kit_.task_files.at(task))
+      b->sources.push_back(fs::path(file).filename().string());
+    same.push_back(b);
+    // Its objects and libraries go as soon as its tests are done (the copy, small, stays to the
+    // end: later copies are compared with it).
+    if (!g_.settings_.keep_work)
+      b->on_finish.push_back([folder = b->folder] {
+        std::error_code error;
+        fs::remove_all(folder, error);
+      });
+    return b;
+  }
+
+  // A task not graded because of the grader: every test failed, with why.
+  void not_graded(std::size_t i, int task, const std::string& why) {
+    TaskResult& r = results[i].tasks[task];
+    r.task = task;
+    r.fault = why;
+    for (const TestInfo* test : tests_of_task(g_.tests_, task, g_.settings_.hidden)) {
+      TestResult t;
+      t.test = test;
+      t.message = "not graded: " + why;
+      r.tests.push_back(t);
+    }
+    done(i, task);
+  }
+
+  void done(std::size_t i, int task) {
+    task_done_(results[i], task);
+    if (--tasks_open_[i] == 0) submission_done_(results[i]);
+  }
+};
+
 std::vector<SubmissionResult> Grader::run(
     const std::vector<Submission>& submissions, bool generous,
     const std::function<void(const SubmissionResult&, int)>& task_done,
     const std::function<void(const SubmissionResult&)>& submission_done) {
   ProcessPool pool(settings_.jobs);
   Pipeline pipeline(*this, pool, generous);
-  std::vector<SubmissionResult> results(submissions.size());
-  std::vector<int> tasks_open(submissions.size(), int(settings_.tasks.size()));
-  // Copies with the same digest, checked byte for byte: equal copies share one build.
-  std::map<std::pair<int, std::string>, std::vector<std::shared_ptr<TaskBuild>>> builds;
-  int build_count = 0;
-  // A few builds at a time, in the order of the submissions: enough to keep every process slot
-  // busy, and the work folder holds the objects of these few only (each is removed when its
-  // build is done), however large the class; the first submissions are done first.
-  std::deque<std::shared_ptr<TaskBuild>> waiting;
-  int active = 0;
-  const int most_active = 2 * settings_.jobs + 1;
-  std::function<void()> start_next = [&] {
-    while (active < most_active && !waiting.empty()) {
-      std::shared_ptr<TaskBuild> next = waiting.front();
-      waiting.pop_front();
-      ++active;
-      next->on_finish.push_back([&] {
-        --active;
-        start_next();
-      });
-      pipeline.start(next);
-    }
-  };
-
-  // A task not graded because of the grader: every test failed, with why.
-  const auto not_graded = [&](std::size_t i, int task, const std::string& why) {
-    TaskResult& r = results[i].tasks[task];
-    r.task = task;
-    r.fault = why;
-    for (const TestInfo* test : tests_of_task(tests_, task, settings_.hidden)) {
-      TestResult t;
-      t.test = test;
-      t.message = "not graded: " + why;
-      r.tests.push_back(t);
-    }
-    task_done(results[i], task);
-    if (--tasks_open[i] == 0) submission_done(results[i]);
-  };
-  for (std::size_t i = 0; i < submissions.size(); ++i) {
-    results[i].submission = submissions[i];
-    // Named by number only: no submission's name ends up in a path a command sees.
-    const fs::path copies = settings_.work / "submissions" / std::to_string(i + 1);
-    for (const int task : settings_.tasks) {
-      if (!submissions[i].fault.empty()) {
-        not_graded(i, task, submissions[i].fault);
-        continue;
-      }
-      TaskCopy copy;
-      try {
-        copy = copy_task(submissions[i], task, kit_, copies);
-      } catch (const fs::filesystem_error& error) {
-        // The submission's files could not be read (gone, or not readable), or the work folder
-        // not written: the grader's problem, never the student's grade. What was copied goes, so
-        // that the others still have room.
-        const std::string full = work_folder_full(settings_.work);
-        std::error_code ignored;
-        fs::remove_all(copies / "tasks" / kit_.task_folder(task), ignored);
-        not_graded(i, task,
-                   full.empty() ? "the grader could not copy the files: " + escaped(error.what())
-                                : full + " (" + escaped(error.what()) + ")");
-        continue;
-      }
-      std::shared_ptr<TaskBuild> b;
-      std::vector<std::shared_ptr<TaskBuild>>& same = builds[{task, copy.digest}];
-      if (copy.problem.empty())
-        for (const auto& other : same)
-          if (other->problem.empty() && same_files(other->copy, copy.folder)) b = other;
-      const bool is_new = !b;
-      if (is_new) {
-        b = std::make_shared<TaskBuild>();
-        b->task = task;
-        b->copy = copy.folder;
-        b->problem = copy.problem;
-        b->folder = settings_.work / "builds" / std::to_string(++build_count);
-        for (const std::string& file : kit_.task_files.at(task))
-          b->sources.push_back(fs::path(file).filename().string());
-        same.push_back(b);
-        // Its objects and libraries go as soon as its tests are done (the copy, small, stays
-        // to the end: later copies are compared with it).
-        if (!settings_.keep_work)
-          b->on_finish.push_back([folder = b->folder] {
-            std::error_code error;
-            fs::remove_all(folder, error);
-          });
-      }
-      b->on_finish.push_back([&, i, task, b, notes = copy.notes] {
-        TaskResult& r = results[i].tasks[task];
-        r = b->result;
-        r.task = task;
-        r.notes = notes;
-        task_done(results[i], task);
-        if (--tasks_open[i] == 0) submission_done(results[i]);
-      });
-      if (is_new) waiting.push_back(b);
-    }
-  }
-  start_next();
+  Batch batch(*this, pipeline, submissions, task_done, submission_done);
+  for (std::size_t i = 0; i < submissions.size(); ++i)
+    batch.add(i);
+  batch.start_next();
   pool.run();
   if (!settings_.keep_work) {
     std::error_code error;
     fs::remove_all(settings_.work / "submissions", error);
     fs::remove_all(settings_.work / "builds", error);
   }
-  return results;
+  return std::move(batch.results);
 }
 
 std::vector<SubmissionResult> Grader::grade(
@@ -982,24 +1112,19 @@ bool Grader::calibrate(const fs::path& cache,
   // measured (another machine's, but the limits are ten times as long and at least 2 s).
   const bool shipped = kit_.solutions.empty();
   const CacheContents read = read_cache(shipped ? kit_.calibration : cache);
-  std::map<int, std::string> signatures = read.signatures;  // per task whose lines are kept
-  for (const auto& [variant, tests] : read.times)
-    for (const auto& [name, time] : tests)
-      calibration_[variant][name] = time;
-  // A task with a time of 0 is measured again.
-  if (!shipped)
-    for (const int t : read.unmeasured)
-      signatures.erase(t);
+  // per task whose lines are kept
+  std::map<int, std::string> signatures = take_cached(read, shipped, calibration_);
   if (shipped) return true;  // without times, every test gets the floor's ten times (grading.hpp)
-  std::vector<int> missing;
-  for (const int task : settings_.tasks) {
-    const std::string signature = task_signature(kit_, tests_, task);
-    if (signatures.count(task) > 0 && signatures[task] == signature) continue;
-    forget_task(calibration_, task);
-    signatures[task] = signature;
-    missing.push_back(task);
-  }
+  const std::vector<int> missing =
+      tasks_to_measure(kit_, tests_, settings_.tasks, signatures, calibration_);
   if (missing.empty()) return true;
+  take_measured(measure_reference(missing, progress).front(), calibration_);
+  take_others(read_cache(cache), settings_.tasks, signatures, calibration_);
+  return write_cache(cache, signatures, calibration_, progress);
+}
+
+std::vector<SubmissionResult> Grader::measure_reference(
+    const std::vector<int>& missing, const std::function<void(const std::string&)>& progress) {
   const Settings saved = settings_;
   settings_.tasks = missing;
   settings_.hidden = true;  // one measurement serves a student's check and an instructor's grading
@@ -1022,7 +1147,7 @@ bool Grader::calibrate(const fs::path& cache,
                return list;
              }() +
              " (once per build of the kit)");
-  const std::vector<SubmissionResult> results = run(
+  std::vector<SubmissionResult> results = run(
       {reference}, true,
       [&](const SubmissionResult&, int task) {
         const double seconds =
@@ -1038,54 +1163,7 @@ bool Grader::calibrate(const fs::path& cache,
       },
       [](auto&) {});
   settings_ = saved;
-  if (const std::string fault = results.front().fault(); !fault.empty())
-    throw std::runtime_error("the reference's times could not be measured: " + fault);
-  std::string failures;
-  for (const auto& [task, result] : results.front().tasks)
-    for (const TestResult& t : result.tests)
-      if (!t.passed)
-        failures += "\n  task " + std::to_string(task) + ": " + t.test->name + ": " +
-                    (result.problem.empty() ? t.message : result.problem);
-      else {
-        calibration_["plain"][t.test->name] = {task, t.seconds};
-        calibration_["sanitized"][t.test->name] = {task, t.sanitized_seconds};
-      }
-  if (!failures.empty())
-    throw std::runtime_error(
-        "the kit's own solutions fail tests, so nothing can be graded "
-        "fairly (rebuild the kit; if it persists, the kit is broken):" +
-        failures);
-  // Another grading may have written the cache since it was read (two started side by side, each
-  // measuring its own tasks): the tasks it holds that this one does not grade are written as they
-  // are now, so that neither drops the other's; the tasks this one grades keep the times of its
-  // own programs. (Only the moment between this reading and the rename below is left for another
-  // grading to slip into.)
-  const CacheContents now = read_cache(cache);
-  for (const auto& [task, signature] : now.signatures) {
-    if (std::ranges::find(saved.tasks, task) != saved.tasks.end() || now.unmeasured.count(task) > 0)
-      continue;
-    signatures[task] = signature;
-    forget_task(calibration_, task);
-    for (const auto& [variant, tests] : now.times)
-      for (const auto& [name, time] : tests)
-        if (time.task == task) calibration_[variant][name] = time;
-  }
-  // Written whole, then renamed: another grader reading it meanwhile sees the old or the new. A
-  // cache that cannot be written costs only the measurement again next time.
-  std::ostringstream out;
-  for (const auto& [task, signature] : signatures)
-    out << "task " << task << ' ' << signature << '\n';
-  out << "---\n";
-  for (const auto& [name, variant] : calibration_)
-    for (const auto& [test, time] : variant)
-      out << name << ' ' << time.seconds << ' ' << time.task << ' ' << test << '\n';
-  try {
-    write_file(cache, out.str());
-  } catch (const std::runtime_error& error) {
-    if (progress) progress(std::string(error.what()) + " (measured again next time)");
-    return false;
-  }
-  return true;
+  return results;
 }
 
 }  // namespace springlab::grader

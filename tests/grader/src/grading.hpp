@@ -91,6 +91,7 @@ class Grader {
  private:
   struct TaskBuild;
   class Pipeline;
+  class Batch;
   const Kit& kit_;
   const std::vector<TestInfo>& tests_;
   Settings settings_;
@@ -103,6 +104,10 @@ class Grader {
       const std::vector<Submission>& submissions, bool generous,
       const std::function<void(const SubmissionResult&, int)>& task_done,
       const std::function<void(const SubmissionResult&)>& done);
+  /// Grades the kit's solutions in `tasks`, every test plainly and sanitized, with generous
+  /// limits: their times (calibrate).
+  std::vector<SubmissionResult> measure_reference(
+      const std::vector<int>& tasks, const std::function<void(const std::string&)>& progress);
 };
 
 }  // namespace springlab::grader

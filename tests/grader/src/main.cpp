@@ -238,14 +238,10 @@ int calibrate_only(const Options& options, const Kit& kit, const std::vector<Tes
   return 0;
 }
 
-int grade(Options options) {
-  if (options.calibrate && !options.submissions.empty())
-    throw UsageError("--calibrate grades nothing: give no submission with it (" +
-                     escaped(options.submissions.front()) + ")");
-  const Kit kit = read_kit(options.kit);
+// --out made absolute, and --work: under the kit's build/ (ignored by git) whatever the current
+// folder, one per results folder, so that two runs with their own --out never share one.
+void settle_folders(Options& options, const Kit& kit) {
   options.out = absolute_folder(options.out);
-  // The work folder lives under the kit's build/ (ignored by git) whatever the current folder,
-  // one per results folder, so that two runs with their own --out never share one.
   options.work = options.work.empty()
                      ? kit.root / "build" / "grade" / "work" /
                            std::to_string(std::hash<std::string>{}(options.out.string()) % 1000003)
@@ -254,8 +250,11 @@ int grade(Options options) {
     throw UsageError(
         "--out and --work must be different folders, neither inside the other (--out " +
         escaped(options.out.string()) + ", --work " + escaped(options.work.string()) + ")");
-  // The tasks graded, or all for --max-points: a student's check of task 1 may have built the
-  // programs of task 1 only (./lab test task1).
+}
+
+// The tests of the tasks graded, or of all for --max-points (a student's check of task 1 may have
+// built the programs of task 1 only: ./lab test task1), with their points.
+std::vector<TestInfo> list_tests(const Options& options, const Kit& kit) {
   std::string listing;
   for (const auto& [task, program] : kit.programs) {
     if (!options.max_points &&
@@ -270,46 +269,65 @@ int grade(Options options) {
   }
   std::vector<TestInfo> tests = parse_test_list(listing);
   assign_points(tests, options.points.empty() ? kit.points : options.points);
-  if (options.max_points) {  // for the GitHub Classroom workflow of a release (./lab points)
-    std::map<int, double> max;
-    for (const TestInfo& t : tests)
-      if (!t.hidden || !options.student) max[t.task] += t.points;
-    for (const auto& [task, points] : max)
-      std::cout << "task" << task << ' ' << points << '\n';
-    return 0;
-  }
-  if (options.calibrate) return calibrate_only(options, kit, tests);
-  if (options.submissions.empty()) throw UsageError("submission is required");
-  const std::vector<Submission> submissions = find_all(options, kit);
+  return tests;
+}
+
+// --max-points: each task's maximum, for the GitHub Classroom workflow of a release (./lab points).
+int print_max_points(const Options& options, const std::vector<TestInfo>& tests) {
+  std::map<int, double> max;
+  for (const TestInfo& t : tests)
+    if (!t.hidden || !options.student) max[t.task] += t.points;
+  for (const auto& [task, points] : max)
+    std::cout << "task" << task << ' ' << points << '\n';
+  return 0;
+}
+
+void warn_of_empty(const std::vector<Submission>& submissions) {
   for (const Submission& s : submissions)
     if (s.fault.empty() && s.empty())
       std::cerr << "springlab-grade: " << escaped(s.name) << ": not one of the tasks' files "
                 << "found (graded as the starter code): is " << escaped(s.folder.string())
                 << " a submission?\n";
+}
+
+Settings settings_of(const Options& options) {
   Settings settings = options.settings;
   settings.tasks = options.tasks;
   settings.work = options.work;
   settings.hidden = !options.student;  // a student's check never shows the hidden tests
-  check_apart(options.out, submissions);
-  check_apart(settings.work, submissions);
-  ResultsFolder out(options.out, options.replace);
-  const int work_lock = take_work_folder(settings.work);
+  return settings;
+}
 
-  // Grading named submissions into a folder of an earlier run: theirs are replaced, everyone
-  // else's kept; those graded before on the same files, kit and settings are kept as they are (a
-  // run stopped half way, started again, grades only the rest).
-  const std::string run = run_signature(kit, tests, settings);
+// The submissions to grade now, with their signatures, and those kept: grading named submissions
+// into a folder of an earlier run, theirs are replaced, everyone else's kept; those graded before
+// on the same files, kit and settings are kept as they are (a run stopped half way, started again,
+// grades only the rest).
+struct Plan {
   std::vector<Submission> to_grade;
-  std::vector<std::string> signatures, kept;
+  std::map<std::string, std::string> signature_by_name;  // of those to grade
+  std::vector<std::string> kept;
+};
+
+Plan plan_grading(const Options& options, const Kit& kit, const std::vector<TestInfo>& tests,
+                  const Settings& settings, const std::vector<Submission>& submissions,
+                  const ResultsFolder& out) {
+  const std::string run = run_signature(kit, tests, settings);
+  Plan plan;
   for (const Submission& s : submissions) {
     const std::string signature = signature_of(run, s, settings);
     if (!options.student && out.unchanged(s.name, signature)) {
-      kept.push_back(s.name);
+      plan.kept.push_back(s.name);
       continue;
     }
-    to_grade.push_back(s);
-    signatures.push_back(signature);
+    plan.to_grade.push_back(s);
+    plan.signature_by_name[s.name] = signature;
   }
+  return plan;
+}
+
+// The results of other submissions in the folder, and those kept, in a line each.
+void say_kept(const Options& options, const std::vector<Submission>& submissions, const Plan& plan,
+              const ResultsFolder& out) {
   std::size_t others = 0;
   for (const auto& record : out.recorded()) {
     const auto& name = record.first;  // a named copy: Clang 14 cannot capture a structured binding
@@ -320,40 +338,41 @@ int grade(Options options) {
     std::cerr << "springlab-grade: " << escaped(options.out.string()) << " holds " << others
               << " other submission" << (others == 1 ? "'s" : "s'") << " results of earlier "
               << "runs: kept, and in the gradebook (--replace empties the folder first)\n";
+  const std::vector<std::string>& kept = plan.kept;
   if (!kept.empty())
     std::cerr << "springlab-grade: " << kept.size() << " submission"
               << (kept.size() == 1 ? " was" : "s were")
               << " graded before with the same files, kit and settings: kept as they are ("
               << escaped(kept.front()) << (kept.size() > 1 ? ", ..." : "") << ")\n";
+}
 
-  // Whether submission code can have namespaces of its own here: said once, on the terminal and
-  // (when it cannot) in review.csv.
-  const Isolation isolation = Isolation::probe({kit.root, options.out, settings.work});
-  std::cerr << "springlab-grade: " << isolation.describe() << "\n";
-  Grader grader(kit, tests, settings, isolation);
-  grader.calibrate(options.kit.parent_path() / "calibration.txt", say_measuring);
+// What is about to run, in a line.
+void say_grading(const Options& options, const std::vector<TestInfo>& tests,
+                 const Settings& settings, const Grader& grader, std::size_t to_grade) {
   if (options.student) {
     std::cerr << "springlab-grade: compiling your code, then running each test in a process of "
               << "its own, plainly and with the sanitizers (which check every memory access)\n";
-  } else if (!to_grade.empty()) {
+  } else if (to_grade > 0) {
     const auto hidden = std::count_if(tests.begin(), tests.end(), [&](const TestInfo& t) {
       return t.hidden && std::count(options.tasks.begin(), options.tasks.end(), t.task) > 0;
     });
-    std::cerr << "springlab-grade: grading " << to_grade.size() << " submission"
-              << (to_grade.size() == 1 ? "" : "s") << " (" << settings.jobs
+    std::cerr << "springlab-grade: grading " << to_grade << " submission"
+              << (to_grade == 1 ? "" : "s") << " (" << settings.jobs
               << " processes at once; a test may take " << grader.time_limit_text() << ")";
     if (hidden > 0)
       std::cerr << ", hidden tests included (" << hidden << ", shown to students after the due "
                 << "date)";
     std::cerr << "\n";
   }
+}
 
-  bool all_passed = true;
-  std::size_t finished = 0;
-  std::vector<std::string> not_graded;  // "name: why"
-  const auto started = std::chrono::steady_clock::now();
-  std::map<std::string, std::set<int>> tasks_done;  // student mode: print tasks in order
-  const auto task_done = [&](const SubmissionResult& r, int task) {
+// Student mode: each task's feedback printed as soon as it and the tasks before it are done.
+struct TasksInOrder {
+  const Options& options;
+  const Kit& kit;
+  std::map<std::string, std::set<int>> tasks_done;
+
+  void operator()(const SubmissionResult& r, int task) {
     if (!options.student) return;
     std::set<int>& done = tasks_done[r.submission.name];
     done.insert(task);
@@ -363,11 +382,22 @@ int grade(Options options) {
       std::cout << task_feedback(r, t, kit) << std::flush;
       done.insert(-t);
     }
-  };
-  std::map<std::string, std::string> signature_by_name;
-  for (std::size_t i = 0; i < to_grade.size(); ++i)
-    signature_by_name[to_grade[i].name] = signatures[i];
-  const auto submission_done = [&](const SubmissionResult& r) {
+  }
+};
+
+// Each submission as it is done: its results written, and its feedback (one submission, or a
+// student's check) or a line of progress on the terminal.
+struct SubmissionsDone {
+  const Options& options;
+  const Kit& kit;
+  ResultsFolder& out;
+  Plan plan;
+  bool all_passed = true;
+  std::size_t finished = 0;
+  std::vector<std::string> not_graded{};  // "name: why"
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+
+  void operator()(const SubmissionResult& r) {
     // Its own tests' time, not the batch's: in a batch the submissions share the machine.
     double seconds = 0.0;
     for (const auto& [task, result] : r.tasks)
@@ -375,36 +405,41 @@ int grade(Options options) {
         seconds += t.seconds + t.sanitized_seconds;
     std::string fault = r.fault();
     try {
-      out.write(r, signature_by_name[r.submission.name], kit, seconds);
+      out.write(r, plan.signature_by_name[r.submission.name], kit, seconds);
     } catch (const std::runtime_error& error) {
       if (fault.empty()) fault = error.what();
     }
     if (!fault.empty()) not_graded.push_back(escaped(r.submission.name) + ": " + fault);
     all_passed = all_passed && fault.empty() && r.points() == r.max_points();
     ++finished;
-    if (options.student) {
+    if (options.student)
       std::cout << summary_feedback(r);
-    } else if (to_grade.size() == 1) {
+    else if (plan.to_grade.size() == 1)
       std::cout << feedback(r, kit);
-    } else {
-      const double elapsed =
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      const long left =
-          std::lround(elapsed / double(finished) * double(to_grade.size() - finished));
-      std::cout << "[" << finished << "/" << to_grade.size() << "] " << escaped(r.submission.name)
-                << ": "
-                << (fault.empty()
-                        ? points_text(r.points()) + " of " + points_text(r.max_points()) + " points"
-                        : "not graded (" + fault + ")")
-                << (finished < to_grade.size() ? " (about " + std::to_string(left) + " s left)"
-                                               : "")
-                << std::endl;
-    }
-  };
-  // What was kept is shown as it was graded: one submission's feedback, or a line each.
+    else
+      print_progress(r, fault);
+  }
+
+  void print_progress(const SubmissionResult& r, const std::string& fault) const {
+    const std::size_t total = plan.to_grade.size();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    const long left = std::lround(elapsed / double(finished) * double(total - finished));
+    std::cout << "[" << finished << "/" << total << "] " << escaped(r.submission.name) << ": "
+              << (fault.empty()
+                      ? points_text(r.points()) + " of " + points_text(r.max_points()) + " points"
+                      : "not graded (" + fault + ")")
+              << (finished < total ? " (about " + std::to_string(left) + " s left)" : "")
+              << std::endl;
+  }
+};
+
+// What was kept is shown as it was graded: one submission's feedback, or a line each.
+void show_kept(const Options& options, std::size_t submissions,
+               const std::vector<std::string>& kept, const ResultsFolder& out) {
   for (const std::string& name : kept) {
     const Recorded& r = out.recorded().at(name);
-    if (submissions.size() == 1) {
+    if (submissions == 1) {
       std::ifstream saved(options.out / results_folder(name) / "feedback.txt");
       std::cout << saved.rdbuf();
       continue;
@@ -415,15 +450,11 @@ int grade(Options options) {
     std::cout << "[kept] " << escaped(name) << ": " << points_text(points) << " of "
               << points_text(max) << " points (graded before on the same files)" << std::endl;
   }
-  grader.grade(to_grade, task_done, submission_done);
-  if (!options.student && !grader.phase_times().empty()) print_phase_times(grader.phase_times());
-  try {
-    out.write_gradebook(isolation.namespaces() ? "" : isolation.describe());
-  } catch (const std::runtime_error& error) {
-    not_graded.push_back(std::string("the gradebook: ") + error.what() +
-                         " (each submission's own results are in its folder)");
-  }
-  close(work_lock);
+}
+
+// Where the results are, what to review, and what could not be graded; the exit status.
+int conclude(const Options& options, const ResultsFolder& out,
+             const std::vector<std::string>& not_graded, bool all_passed) {
   if (!options.student) {
     std::cerr << "springlab-grade: " << escaped(options.out.string()) << "/gradebook.csv ("
               << out.recorded().size() << " submission" << (out.recorded().size() == 1 ? "" : "s")
@@ -445,17 +476,53 @@ int grade(Options options) {
   return options.student && !all_passed ? 1 : 0;
 }
 
-}  // namespace
+int grade(Options options) {
+  if (options.calibrate && !options.submissions.empty())
+    throw UsageError("--calibrate grades nothing: give no submission with it (" +
+                     escaped(options.submissions.front()) + ")");
+  const Kit kit = read_kit(options.kit);
+  settle_folders(options, kit);
+  const std::vector<TestInfo> tests = list_tests(options, kit);
+  if (options.max_points) return print_max_points(options, tests);
+  if (options.calibrate) return calibrate_only(options, kit, tests);
+  if (options.submissions.empty()) throw UsageError("submission is required");
+  const std::vector<Submission> submissions = find_all(options, kit);
+  warn_of_empty(submissions);
+  const Settings settings = settings_of(options);
+  check_apart(options.out, submissions);
+  check_apart(settings.work, submissions);
+  ResultsFolder out(options.out, options.replace);
+  const int work_lock = take_work_folder(settings.work);
+  SubmissionsDone done{options, kit, out,
+                       plan_grading(options, kit, tests, settings, submissions, out)};
+  say_kept(options, submissions, done.plan, out);
 
-int main(int argc, char** argv) {
-  // Not dumpable: no process of the same user (a test, where there are no namespaces to hide the
-  // grader) may read its environment (the instructor's shell's) or its memory through /proc.
-  prctl(PR_SET_DUMPABLE, 0, 0, 0, 0);
-  Options options;
-  options.settings.jobs = available_processors();
-  CLI::App app(
-      "springlab-grade: grades submissions of the springlab tasks, each test in a "
-      "process of its own under limits, plain and with the sanitizers");
+  // Whether submission code can have namespaces of its own here: said once, on the terminal and
+  // (when it cannot) in review.csv.
+  const Isolation isolation = Isolation::probe({kit.root, options.out, settings.work});
+  std::cerr << "springlab-grade: " << isolation.describe() << "\n";
+  Grader grader(kit, tests, settings, isolation);
+  grader.calibrate(options.kit.parent_path() / "calibration.txt", say_measuring);
+  say_grading(options, tests, settings, grader, done.plan.to_grade.size());
+  done.started = std::chrono::steady_clock::now();
+  TasksInOrder task_done{options, kit, {}};
+  show_kept(options, submissions.size(), done.plan.kept, out);
+  grader.grade(
+      done.plan.to_grade, [&](const SubmissionResult& r, int task) { task_done(r, task); },
+      [&](const SubmissionResult& r) { done(r); });
+  if (!options.student && !grader.phase_times().empty()) print_phase_times(grader.phase_times());
+  try {
+    out.write_gradebook(isolation.namespaces() ? "" : isolation.describe());
+  } catch (const std::runtime_error& error) {
+    done.not_graded.push_back(std::string("the gradebook: ") + error.what() +
+                              " (each submission's own results are in its folder)");
+  }
+  close(work_lock);
+  return conclude(options, out, done.not_graded, done.all_passed);
+}
+
+// The command line's options, in the order --help lists them.
+void add_options(CLI::App& app, Options& options) {
   app.add_option("submission", options.submissions,
                  "a copy of tasks/, a student repository (its tasks/ is used) or a folder of "
                  "the loose .cpp files");
@@ -511,6 +578,20 @@ int main(int argc, char** argv) {
       ->excludes(first_failure)
       ->excludes(max_points);
   app.add_option("--kit", options.kit, "the kit.toml of the build to use")->capture_default_str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Not dumpable: no process of the same user (a test, where there are no namespaces to hide the
+  // grader) may read its environment (the instructor's shell's) or its memory through /proc.
+  prctl(PR_SET_DUMPABLE, 0, 0, 0, 0);
+  Options options;
+  options.settings.jobs = available_processors();
+  CLI::App app(
+      "springlab-grade: grades submissions of the springlab tasks, each test in a "
+      "process of its own under limits, plain and with the sanitizers");
+  add_options(app, options);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& error) {

@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <regex>
 #include <set>
 #include <string>
@@ -55,6 +56,52 @@ bool is_one_of(const std::string& text, std::initializer_list<const char*> words
   return false;
 }
 
+// The name of the function a statement at namespace or class scope declares without defining
+// ("operator" for an operator), or nothing: not inline, constexpr, a template, deleted, defaulted
+// or pure, and not a variable or a function pointer.
+std::optional<std::string> declared_name(const std::vector<Token>& s) {
+  if (s.empty() || is_one_of(s.front().text, {"using", "typedef", "friend", "static_assert",
+                                              "template", "namespace"}))
+    return std::nullopt;
+  int depth = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    const std::string& t = s[i].text;
+    if (s[i].kind == Token::identifier && is_one_of(t, {"inline", "constexpr", "consteval"}))
+      return std::nullopt;  // defined in the header, no symbol needed
+    if (depth == 0 && t == "=")
+      return std::nullopt;  // a variable's initialiser (or = default, = delete)
+    if (t == "(" && depth == 0) {
+      if (i == 0 || s[i - 1].kind != Token::identifier)
+        return std::nullopt;  // a function pointer, say
+      // `= 0`, `= default` or `= delete` after the parameters: nothing to link
+      for (std::size_t j = i; j < s.size(); ++j)
+        if (s[j].text == "=") return std::nullopt;
+      const std::string name = s[i - 1].text;
+      return name == "operator" ? "operator" : name;
+    }
+    if (t == "(" || t == "[") ++depth;
+    if (t == ")" || t == "]") --depth;
+  }
+  return std::nullopt;
+}
+
+// The scope a '{' after `statement` opens inside `outer`: a namespace's or a class's names, or
+// another (a function's body, an initialiser).
+Scope scope_opened(const std::vector<Token>& statement, const Scope& outer) {
+  Scope inner{Scope::other, ""};
+  if (!statement.empty() && statement.front().text == "namespace") {
+    inner = {Scope::names, outer.name};
+    for (const Token& word : statement)
+      if (word.kind == Token::identifier && word.text != "namespace" && word.text != "inline")
+        inner.name += word.text + "::";
+  } else if (!statement.empty() &&
+             is_one_of(statement.front().text, {"class", "struct", "union"}) &&
+             statement.size() >= 2 && statement[1].kind == Token::identifier) {
+    inner = {Scope::type, outer.name + statement[1].text + "::"};
+  }
+  return inner;
+}
+
 // The functions a header declares without defining, as "springlab::WindField::velocities":
 // declarations at namespace or class scope that end in ';', have a parameter list and are not
 // inline, constexpr, templates, deleted, defaulted or pure. The kit's headers are plain enough for
@@ -64,29 +111,6 @@ std::set<std::string> declared_functions(const fs::path& header) {
   std::vector<Scope> scopes{{Scope::names, ""}};
   std::vector<Token> statement;
   int line_of_directive = -1;
-  const auto declaration = [&](const std::vector<Token>& s) {
-    if (s.empty() || is_one_of(s.front().text, {"using", "typedef", "friend", "static_assert",
-                                                "template", "namespace"}))
-      return;
-    int depth = 0;
-    for (std::size_t i = 0; i < s.size(); ++i) {
-      const std::string& t = s[i].text;
-      if (s[i].kind == Token::identifier && is_one_of(t, {"inline", "constexpr", "consteval"}))
-        return;                            // defined in the header, no symbol needed
-      if (depth == 0 && t == "=") return;  // a variable's initialiser (or = default, = delete)
-      if (t == "(" && depth == 0) {
-        if (i == 0 || s[i - 1].kind != Token::identifier) return;  // a function pointer, say
-        // `= 0`, `= default` or `= delete` after the parameters: nothing to link
-        for (std::size_t j = i; j < s.size(); ++j)
-          if (s[j].text == "=") return;
-        const std::string name = s[i - 1].text;
-        found.insert(scopes.back().name + (name == "operator" ? "operator" : name));
-        return;
-      }
-      if (t == "(" || t == "[") ++depth;
-      if (t == ")" || t == "]") --depth;
-    }
-  };
   for (const Token& t : tokens(read(header))) {
     if (t.kind == Token::directive) {
       line_of_directive = t.line;
@@ -114,21 +138,10 @@ std::set<std::string> declared_functions(const fs::path& header) {
       continue;
     }
     if (t.text == ";") {
-      declaration(statement);
+      if (const auto name = declared_name(statement)) found.insert(scopes.back().name + *name);
       statement.clear();
     } else if (t.text == "{") {
-      Scope inner{Scope::other, ""};
-      if (!statement.empty() && statement.front().text == "namespace") {
-        inner = {Scope::names, scopes.back().name};
-        for (const Token& word : statement)
-          if (word.kind == Token::identifier && word.text != "namespace" && word.text != "inline")
-            inner.name += word.text + "::";
-      } else if (!statement.empty() &&
-                 is_one_of(statement.front().text, {"class", "struct", "union"}) &&
-                 statement.size() >= 2 && statement[1].kind == Token::identifier) {
-        inner = {Scope::type, scopes.back().name + statement[1].text + "::"};
-      }
-      scopes.push_back(inner);
+      scopes.push_back(scope_opened(statement, scopes.back()));
       statement.clear();
     } else if (t.text == "}") {
       scopes.pop_back();
