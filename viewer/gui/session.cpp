@@ -314,7 +314,10 @@ double Session::largest_difference() const {
 }
 
 std::optional<Comparison> Session::comparison() const {
-  if (!primary_ || !reference_ || primary_->steps_taken() != reference_->steps_taken())
+  // Nothing to compare before a step (a task not written yet never takes one): "ends 0 m from
+  // the reference's run" would read as agreement.
+  if (!primary_ || !reference_ || primary_->steps_taken() == 0 ||
+      primary_->steps_taken() != reference_->steps_taken())
     return std::nullopt;
   return compare_runs(parameters_, record_of(*primary_, primary_start_energy_),
                       record_of(*reference_, reference_start_energy_));
