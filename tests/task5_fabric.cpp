@@ -312,7 +312,8 @@ TEST_CASE("Wind: F_i = c (w(t, r_i) - v_i), nothing on a particle moving with th
   const WindField wind(parameters);
   const double t = 2.7;
   Vectors r = Vectors::Random(2, 5) * 3.0, v = Vectors::Random(2, 5);
-  v.col(2) = wind.velocity(t, r.col(2));  // drifting with the wind
+  v.col(2) = wind.velocity(t, r.col(2));        // drifting with the wind
+  v.col(3) = 2.0 * wind.velocity(t, r.col(3));  // faster than the wind: the air brakes it
   const Vectors before = Vectors::Random(2, 5);
   Vectors force = before;
   add_wind(wind, t, r, v, force);
@@ -337,6 +338,10 @@ TEST_CASE("Wind: F_i = c (w(t, r_i) - v_i), nothing on a particle moving with th
         UNSCOPED_INFO(
             "the drag pulls a particle towards the wind's velocity, equation (5.3): "
             "c (w - v_i), not c (v_i - w)");
+      else if (is(Vec2::Zero()) && (w - v.col(i)).dot(w) < 0.0)
+        UNSCOPED_INFO(
+            "the drag also brakes a particle that moves faster than the wind (or against it), "
+            "equation (5.3): c (w - v_i) acts whatever the sign of w - v_i");
       else if (is(c * (wind.velocity(t, Vec2::Zero()) - v.col(i))) ||
                is(c * (wind.velocity(0.0, Vec2::Zero()) - v.col(i))))
         UNSCOPED_INFO(
