@@ -331,6 +331,10 @@ std::string spring_force_findings(const SpringForce& f) {
   return out.str();
 }
 
+std::string vec2_text(const Vec2& x) {
+  return "(" + number(x.x()) + ", " + number(x.y()) + ")";
+}
+
 std::string damper_force_findings(const DamperForce& f) {
   // The map v_p, v_q -> F, column by column, at b and at 2b.
   const auto map = [&](double b) {
@@ -354,9 +358,22 @@ std::string damper_force_findings(const DamperForce& f) {
     Eigen::Vector4d v;
     v << v_p, v_q;
     const Vec2 got = f(v_p, v_q, b), linear = offset + m * v;
-    if ((got - linear).norm() > 1e-9 * (1.0 + got.norm()))
-      return "likely mistake: the damper force does not grow in proportion to the velocities "
-             "(twice v_p - v_q gives other than twice the force): (1.2) is -b (v_p - v_q)";
+    if ((got - linear).norm() > 1e-9 * (1.0 + got.norm())) {
+      // Not linear: twice the velocities give other than twice the force, or the parts' forces
+      // do not add up (an abs() of a component doubles exactly). Which one, as measured.
+      const bool scales = (f(2 * v_p, 2 * v_q, b) - 2 * got).norm() <= 1e-9 * (1 + got.norm());
+      const bool even = (f(-v_p, -v_q, b) - got).norm() <= 1e-9 * (1 + got.norm());
+      return std::string("measured: the damper force is not linear in the velocities: ") +
+             (scales ? "twice the velocities give twice the force, but at v_p = " + vec2_text(v_p) +
+                           ", v_q = " + vec2_text(v_q) + " it is " + vec2_text(got) +
+                           " N where the forces of their components, added, give " +
+                           vec2_text(linear) + " N" +
+                           (even ? ", and -v_p, -v_q give the same force as v_p, v_q: the sign "
+                                   "of the velocities is lost"
+                                 : std::string())
+                     : "twice v_p - v_q gives other than twice the force") +
+             "; (1.2), -b (v_p - v_q), is linear";
+    }
   }
   std::ostringstream out;
   if (offset.norm() > 1e-12)

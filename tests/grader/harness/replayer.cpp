@@ -1,5 +1,6 @@
 #include "replayer.hpp"
 
+#include "exception_names.hpp"
 #include "springlab/errors.hpp"
 
 #include <chrono>
@@ -60,7 +61,7 @@ Event next(std::initializer_list<Event> want) {
 
 // The standard exception `type` (as C++ spells it) with `message`, thrown again as that type
 // where it is one of the standard library's with a message, so that the test sees the type the
-// submission threw; any other type is a std::runtime_error whose message names it.
+// submission threw; any other type is relayed under its name (exception_names.hpp).
 [[noreturn]] void throw_standard(const std::string& type, const std::string& message) {
   if (type == "std::out_of_range") throw std::out_of_range(message);
   if (type == "std::length_error") throw std::length_error(message);
@@ -72,10 +73,10 @@ Event next(std::initializer_list<Event> want) {
   if (type == "std::underflow_error") throw std::underflow_error(message);
   if (type == "std::runtime_error") throw std::runtime_error(message);
   if (type == "std::bad_alloc")
-    throw std::runtime_error(
-        message +
-        " (a std::bad_alloc: out of memory, or a size below zero turned into a huge one?)");
-  throw std::runtime_error(message + (type.empty() ? "" : " (an exception of type " + type + ")"));
+    throw testing::RelayedException(
+        type, message + " (out of memory, or a size below zero turned into a huge one?)");
+  // Any other type (a plain std::exception, a class of the student's own) keeps its name.
+  throw testing::RelayedException(type, message);
 }
 
 // libstdc++'s words for .at() past the end ("vector::_M_range_check: __n (which is 9) >=
