@@ -865,14 +865,11 @@ std::string euler_step_findings(const EulerStep& step) {
        off(r, rho * r0.col(0) + alpha * h * v0.col(0) + beta * h * h * A),
        off(v_still, (1 + delta) * v0.col(0)), off(v, (1 + delta) * v0.col(0) + gamma * h * A)});
   if (misfit > 1e-12 * (1.0 + r0.norm() + v0.norm())) {
-    const auto vec = [](const Vectors& x) {
-      return "(" + number(x(0, 0)) + ", " + number(x(1, 0)) + ")";
-    };
+    const auto vec = [](const Vectors& x) { return vec2_text(x.col(0)); };
     return "measured: with r0 = " + vec(r0) + " m, v0 = " + vec(v0) + " m/s, h = " + number(h) +
-           " s and a constant a = (" + number(A.x()) + ", " + number(A.y()) +
-           ") m/s^2 the step gives r1 = " + vec(r) + " and v1 = " + vec(v) +
-           ", where (1.4)-(1.5) give r1 = " + vec(r0 + h * v0) +
-           " and v1 = " + vec(v0 + h * A.replicate(1, 1)) +
+           " s and a constant a = " + vec2_text(A) + " m/s^2 the step gives r1 = " + vec(r) +
+           " and v1 = " + vec(v) + ", where (1.4)-(1.5) give r1 = " + vec(r0 + h * v0) +
+           " and v1 = " + vec2_text(v0.col(0) + h * A) +
            "; no law r1 = r0 + α h v0 + β h^2 a fits it in both "
            "x and y: look at each component of (1.4) and (1.5)";
   }

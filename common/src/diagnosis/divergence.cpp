@@ -807,21 +807,28 @@ bool start_forces_not_finite(const Findings& f, Diagnosis& d, std::ostream& word
 }
 
 // Nothing outside the springs acts, yet the total momentum changed: F_qp = -F_pq broken (2.4).
+// The momentum law (2.4) broken at `time` by `amount`, and the one fix both checks below give.
+constexpr const char* spring_pushes_one_way =
+    "some spring pushes both of its ends the same way, or only one of them. Add F_pq to particle "
+    "p and subtract it from particle q, equation (2.4): F_qp = -F_pq.";
+
+void momentum_broken(Diagnosis& d, double time, double amount) {
+  d.law = BrokenLaw::momentum;
+  d.time = time;
+  d.amount = amount;
+  d.equation = "(2.4)";
+}
+
 bool momentum_not_kept(const Findings& f, Diagnosis& d, std::ostream& words) {
   const MomentumWatch& m = f.e.momentum;
   if (std::isnan(m.broke) || !m.free_of_outside) return false;
-  d.law = BrokenLaw::momentum;
-  d.time = m.broke;
-  d.amount = (m.end - m.p0).norm();
-  d.equation = "(2.4)";
+  momentum_broken(d, m.broke, (m.end - m.p0).norm());
   words << "Why: the total momentum (the sum of m_i v_i) grew from " << significant(m.p0.norm())
         << " kg*m/s to " << significant(m.end.norm()) << " kg*m/s by t = " << f.e.end_time
         << " s (it first changed at t = " << m.broke
         << " s), but with no gravity, wind, push or pin acting, nothing outside the springs can "
-           "change it: some spring pushes both of its ends the same way, or only one of them. "
-           "Add F_pq to particle p and subtract it from particle q, equation (2.4): F_qp = "
-           "-F_pq."
-        << f.about_h(d);
+           "change it: "
+        << spring_pushes_one_way << f.about_h(d);
   return true;
 }
 
@@ -830,17 +837,12 @@ bool momentum_not_kept(const Findings& f, Diagnosis& d, std::ostream& words) {
 bool momentum_beyond_gravity(const Findings& f, Diagnosis& d, std::ostream& words) {
   const MomentumWatch& m = f.e.momentum;
   if (std::isnan(m.broke) || !m.gravity_only || !std::isnan(f.e.gravity.wrong)) return false;
-  d.law = BrokenLaw::momentum;
-  d.time = m.broke;
-  d.amount = m.deviation_end.norm();
-  d.equation = "(2.4)";
+  momentum_broken(d, m.broke, m.deviation_end.norm());
   words << "Why: gravity alone changes the total momentum (the sum of m_i v_i) by t times the "
            "total mass times g, but by t = "
         << f.e.end_time << " s it had changed by " << vector_text(m.deviation_end)
         << " kg*m/s more than that (first at t = " << m.broke
-        << " s), and gravity was added right (m_i g, equation (5.2)): some spring pushes both "
-           "of its ends the same way, or only one of them. Add F_pq to particle p and subtract "
-           "it from particle q, equation (2.4): F_qp = -F_pq."
+        << " s), and gravity was added right (m_i g, equation (5.2)): " << spring_pushes_one_way
         << f.about_h(d);
   return true;
 }
